@@ -1,0 +1,1 @@
+"""Built-in importers plugins, registered through entry points."""

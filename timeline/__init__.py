@@ -1,0 +1,1 @@
+"""haptic-timeline: design haptic icons on a multitrack timeline (model, edits, mixer, files)."""

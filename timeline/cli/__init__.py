@@ -1,0 +1,1 @@
+"""The haptic-timeline command line: one module per verb."""

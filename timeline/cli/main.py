@@ -1,0 +1,51 @@
+"""Entry point of the `haptic-timeline` command: parses the verb and reports user errors."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from timeline.errors import HapticTimelineError
+
+# Each verb module defines add_parser(subparsers) which sets `func` on its parser.
+VERB_MODULES = [
+    "timeline.cli.render_cmd",
+    "timeline.cli.info_cmd",
+]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="haptic-timeline",
+        description="Design haptic icons on a multitrack timeline.",
+    )
+    sub = parser.add_subparsers(dest="verb", metavar="VERB")
+    for name in VERB_MODULES:
+        importlib.import_module(name).add_parser(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one verb; a user's mistake prints one sentence on stderr and returns non-zero."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return 2
+    try:
+        return int(args.func(args) or 0)
+    except HapticTimelineError as exc:
+        print(f"haptic-timeline: {exc}", file=sys.stderr)
+        return 1
+    except OSError as exc:
+        where = f" ({exc.filename})" if exc.filename else ""
+        print(f"haptic-timeline: {exc.strerror or exc}{where}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("haptic-timeline: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

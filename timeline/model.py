@@ -1,0 +1,226 @@
+"""The project state: immutable tracks, clips, tiles, palette and variants.
+
+Every edit (timeline.edits) returns a new Project; unchanged parts are shared, so undo history
+and A/B variants are cheap snapshots of the same states.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
+from typing import Any
+
+from timeline.errors import EditError
+from timeline.tiles import Tile
+
+AXES = ("time", "position")
+FADE_SHAPES = ("linear", "equal-power", "exponential", "s-curve")
+STRETCH_MODES = ("squeeze", "repeat")
+DEFAULT_TIME_RATE = 10_000.0  # Hz: the paper's knob servo rate
+DEFAULT_POSITION_RATE = 180.0 / math.pi / 0.01  # samples per radian: one every 0.01 degree
+
+
+def _finite(name: str, value: float) -> float:
+    value = float(value)
+    if not math.isfinite(value):
+        raise EditError(f"{name} must be a finite number, not {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class Fade:
+    """A fade's length (axis units) and shape."""
+
+    length: float = 0.0
+    shape: str = "linear"
+
+    def __post_init__(self) -> None:
+        length = _finite("a fade's length", self.length)
+        if length < 0:
+            raise EditError(f"a fade's length cannot be negative ({length})")
+        if self.shape not in FADE_SHAPES:
+            raise EditError(f"unknown fade shape {self.shape!r} (choose from {', '.join(FADE_SHAPES)})")
+        object.__setattr__(self, "length", length)
+
+
+@dataclass(frozen=True)
+class Clip:
+    """A tile placed on a track.
+
+    The clip plays source [source_in, source_out) of its tile. Its length on the timeline is
+    (source_out - source_in) * stretch: in `squeeze` mode the source is resampled (a 10 Hz sine
+    stretched by 2 plays at 5 Hz); in `repeat` mode it loops at its own speed, `loop_phase` into
+    the loop. Amplitude: value = gain * (scale * shape + offset), where scaling by f about a
+    horizontal mirror line p maps y to p + f*(y - p); `pivot` is the line the user placed.
+    """
+
+    id: str
+    tile_id: str
+    start: float
+    source_in: float
+    source_out: float
+    stretch: float = 1.0
+    stretch_mode: str = "squeeze"
+    loop_phase: float = 0.0
+    gain: float = 1.0
+    scale: float = 1.0
+    offset: float = 0.0
+    pivot: float = 0.0
+    reverse: bool = False
+    fade_in: Fade = Fade()
+    fade_out: Fade = Fade()
+
+    def __post_init__(self) -> None:
+        for name in ("start", "source_in", "source_out", "stretch", "loop_phase", "gain", "scale",
+                     "offset", "pivot"):
+            object.__setattr__(self, name, _finite(f"a clip's {name.replace('_', ' ')}", getattr(self, name)))
+        if self.source_out <= self.source_in:
+            raise EditError("a clip must play a source range of positive length")
+        if self.stretch <= 0:
+            raise EditError(f"a clip's stretch must be positive, not {self.stretch}")
+        if self.stretch_mode not in STRETCH_MODES:
+            raise EditError(f"unknown stretch mode {self.stretch_mode!r} (squeeze or repeat)")
+
+    @property
+    def source_length(self) -> float:
+        return self.source_out - self.source_in
+
+    @property
+    def duration(self) -> float:
+        return self.source_length * self.stretch
+
+    @property
+    def end(self) -> float:
+        return self.start + self.duration
+
+    @property
+    def inverted(self) -> bool:
+        """True when the clip is mirrored (its amplitude scale is negative)."""
+        return self.scale < 0
+
+
+@dataclass(frozen=True)
+class Track:
+    """One haptic layer: a kind (its meaning), gain, mute/solo and the clips on it."""
+
+    id: str
+    kind: str
+    name: str
+    clips: tuple[Clip, ...] = ()
+    gain: float = 1.0
+    mute: bool = False
+    solo: bool = False
+    full_scale: float | None = None  # None: the kind's full scale
+
+    def clip(self, clip_id: str) -> Clip:
+        for c in self.clips:
+            if c.id == clip_id:
+                return c
+        raise EditError(f"track {self.name!r} has no clip {clip_id!r}")
+
+
+@dataclass(frozen=True)
+class PaletteTab:
+    """A palette tab: templates, scratch, or a user collection of tile ids."""
+
+    name: str
+    role: str  # "templates", "scratch" or "user"
+    tile_ids: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Variant:
+    """A named snapshot of a design (tracks and tiles), for A/B comparison by feel."""
+
+    name: str
+    tracks: tuple[Track, ...]
+    tiles: MappingProxyType
+
+
+def _frozen_map(mapping: Any) -> MappingProxyType:
+    return mapping if isinstance(mapping, MappingProxyType) else MappingProxyType(dict(mapping))
+
+
+@dataclass(frozen=True)
+class Project:
+    """A whole design: axis, rate, tracks, tile library, palette, variants and metadata."""
+
+    axis: str = "time"
+    rate: float = DEFAULT_TIME_RATE
+    tracks: tuple[Track, ...] = ()
+    tiles: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
+    palette: tuple[PaletteTab, ...] = (
+        PaletteTab("Templates", "templates"),
+        PaletteTab("Scratch", "scratch"),
+    )
+    variants: tuple[Variant, ...] = ()
+    active_variant: str | None = None
+    metadata: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
+    next_id: int = 1
+
+    def __post_init__(self) -> None:
+        if self.axis not in AXES:
+            raise EditError(f"unknown axis {self.axis!r} (choose time or position)")
+        rate = _finite("the project's rate", self.rate)
+        if rate <= 0:
+            raise EditError(f"the project's rate must be positive, not {rate}")
+        object.__setattr__(self, "rate", rate)
+        object.__setattr__(self, "tiles", _frozen_map(self.tiles))
+        object.__setattr__(self, "metadata", _frozen_map(self.metadata))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Project):
+            return NotImplemented
+        return all(
+            (dict(getattr(self, f)) if f in ("tiles", "metadata") else getattr(self, f))
+            == (dict(getattr(other, f)) if f in ("tiles", "metadata") else getattr(other, f))
+            for f in self.__dataclass_fields__
+        )
+
+    __hash__ = None  # type: ignore[assignment]
+
+    @property
+    def unit(self) -> str:
+        """The axis unit: seconds for time, radians for position."""
+        return "s" if self.axis == "time" else "rad"
+
+    @property
+    def duration(self) -> float:
+        """End of the last clip on any track (0 for an empty project)."""
+        return max((c.end for t in self.tracks for c in t.clips), default=0.0)
+
+    def track(self, track_id: str) -> Track:
+        for t in self.tracks:
+            if t.id == track_id:
+                return t
+        raise EditError(f"there is no track {track_id!r}")
+
+    def tile(self, tile_id: str) -> Tile:
+        try:
+            return self.tiles[tile_id]
+        except KeyError:
+            raise EditError(f"there is no tile {tile_id!r}") from None
+
+    def find_clip(self, clip_id: str) -> tuple[Track, Clip]:
+        for t in self.tracks:
+            for c in t.clips:
+                if c.id == clip_id:
+                    return t, c
+        raise EditError(f"there is no clip {clip_id!r}")
+
+    def tab(self, name: str) -> PaletteTab:
+        for tab in self.palette:
+            if tab.name == name:
+                return tab
+        raise EditError(f"there is no palette tab {name!r}")
+
+    def variant(self, name: str) -> Variant:
+        for v in self.variants:
+            if v.name == name:
+                return v
+        raise EditError(f"there is no variant {name!r}")
+
+    def with_id(self, prefix: str) -> tuple[Project, str]:
+        """Return a project with its id counter advanced, and a fresh id with the prefix."""
+        return replace(self, next_id=self.next_id + 1), f"{prefix}{self.next_id}"

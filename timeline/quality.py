@@ -1,0 +1,45 @@
+"""Quality presets: how the mixer trades speed for accuracy (measured in benchmarks/)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from timeline.errors import HapticTimelineError
+
+
+@dataclass(frozen=True)
+class QualityPreset:
+    """How sampled tiles are resampled, how often shapes are evaluated, and the output dtype."""
+
+    name: str
+    resampler: str  # "linear", or a soxr quality: "soxr-hq", "soxr-vhq"
+    fraction: str  # interpolation for sub-sample offsets after resampling: "linear" or "cubic"
+    control_decimation: int  # evaluate generators/splines every Nth sample, linear in between
+    dtype: type
+
+    @property
+    def numpy_dtype(self) -> np.dtype:
+        return np.dtype(self.dtype)
+
+
+PRESETS: dict[str, QualityPreset] = {
+    "draft": QualityPreset("draft", "linear", "linear", 8, np.float32),
+    "normal": QualityPreset("normal", "soxr-hq", "cubic", 1, np.float64),
+    "exact": QualityPreset("exact", "soxr-vhq", "cubic", 1, np.float64),
+}
+
+DEFAULT_QUALITY = "normal"
+
+
+def preset(name: str | QualityPreset) -> QualityPreset:
+    """Look up a preset by name, or raise one clear sentence naming the choices."""
+    if isinstance(name, QualityPreset):
+        return name
+    try:
+        return PRESETS[name]
+    except KeyError:
+        raise HapticTimelineError(
+            f"unknown quality {name!r} (choose from {', '.join(PRESETS)})"
+        ) from None

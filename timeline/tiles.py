@@ -1,0 +1,228 @@
+"""Tiles: unitless shapes over an axis (seconds or radians) that clips place on tracks.
+
+A tile has no physical meaning of its own; a track kind gives it one (the paper's palette).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from timeline.errors import EditError
+from timeline.generators import GENERATORS
+from timeline.quality import QualityPreset
+from timeline.resample import sample_grid
+
+MAX_TILE_SAMPLES = 2**31  # ~16 GiB of float64; anything larger is refused as a hostile size
+
+
+def _check_duration(duration: float) -> float:
+    duration = float(duration)
+    if not math.isfinite(duration) or duration <= 0:
+        raise EditError(f"a tile's duration must be a positive number, not {duration!r}")
+    return duration
+
+
+def _evaluate_decimated(fn, u0: float, du: float, n: int, decimation: int) -> np.ndarray:
+    """Evaluate fn on every `decimation`-th grid point and interpolate linearly in between."""
+    if decimation <= 1 or n <= 2 * decimation:
+        return fn(u0 + du * np.arange(n))
+    coarse_i = np.arange(0, n + decimation - 1, decimation)
+    coarse_i[-1] = min(coarse_i[-1], n - 1)
+    coarse = fn(u0 + du * coarse_i)
+    return np.interp(np.arange(n), coarse_i, coarse)
+
+
+@dataclass(frozen=True, eq=False)
+class SampledTile:
+    """An array of samples at a rate (imports, merges, freehand drawing); sample k sits at k/rate."""
+
+    data: np.ndarray
+    rate: float
+    name: str = "sampled"
+    source: str = ""  # where it came from (file name), for the user's information
+
+    def __post_init__(self) -> None:
+        data = np.array(self.data, dtype=np.float64, copy=True).reshape(-1)
+        if data.size == 0:
+            raise EditError("a sampled tile needs at least one sample")
+        if data.size > MAX_TILE_SAMPLES:
+            raise EditError(f"a sampled tile of {data.size} samples is larger than supported")
+        if not np.isfinite(data).all():
+            bad = int(np.flatnonzero(~np.isfinite(data))[0])
+            raise EditError(f"sample {bad} of tile {self.name!r} is not a finite number")
+        rate = float(self.rate)
+        if not math.isfinite(rate) or rate <= 0:
+            raise EditError(f"a sampled tile's rate must be a positive number, not {self.rate!r}")
+        data.setflags(write=False)
+        object.__setattr__(self, "data", data)
+        object.__setattr__(self, "rate", rate)
+
+    @property
+    def duration(self) -> float:
+        return len(self.data) / self.rate
+
+    @property
+    def reverse_shift(self) -> float:
+        """Reversal maps sample k to sample n-1-k, so it is shifted by one sample period."""
+        return 1.0 / self.rate
+
+    @cached_property
+    def key(self) -> str:
+        h = hashlib.blake2b(self.data.tobytes(), digest_size=16)
+        h.update(repr(self.rate).encode())
+        return "sampled:" + h.hexdigest()
+
+    def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
+        return sample_grid(self.data, self.rate, u0, du, n, quality)
+
+    def with_name(self, name: str) -> SampledTile:
+        return SampledTile(self.data, self.rate, name, self.source)
+
+    def __eq__(self, other: object) -> bool:
+        return (
+            isinstance(other, SampledTile)
+            and self.rate == other.rate
+            and self.name == other.name
+            and self.source == other.source
+            and np.array_equal(self.data, other.data)
+        )
+
+    def __hash__(self) -> int:
+        return hash(self.key)
+
+
+@dataclass(frozen=True)
+class SplineTile:
+    """Control points (t, v) joined by a natural cubic spline or a monotone (PCHIP) curve."""
+
+    points: tuple[tuple[float, float], ...]
+    duration: float
+    method: str = "natural"  # "natural" or "pchip"
+    name: str = "spline"
+
+    def __post_init__(self) -> None:
+        pts = tuple(sorted((float(t), float(v)) for t, v in self.points))
+        if not pts:
+            raise EditError("a spline tile needs at least one control point")
+        if not all(math.isfinite(t) and math.isfinite(v) for t, v in pts):
+            raise EditError("spline control points must be finite numbers")
+        if len({t for t, _ in pts}) != len(pts):
+            raise EditError("two spline control points cannot share one time")
+        if self.method not in ("natural", "pchip"):
+            raise EditError(f"unknown spline method {self.method!r} (choose natural or pchip)")
+        object.__setattr__(self, "points", pts)
+        object.__setattr__(self, "duration", _check_duration(self.duration))
+
+    reverse_shift = 0.0
+
+    @property
+    def key(self) -> str:
+        return "spline:" + repr((self.points, self.duration, self.method))
+
+    @cached_property
+    def _curve(self):
+        from scipy.interpolate import CubicSpline, PchipInterpolator
+
+        t = np.array([p[0] for p in self.points])
+        v = np.array([p[1] for p in self.points])
+        if len(t) == 1:
+            return lambda u: np.full(np.shape(u), v[0])
+        if len(t) == 2:
+            return lambda u: np.interp(u, t, v)
+        if self.method == "pchip":
+            return PchipInterpolator(t, v, extrapolate=False)
+        return CubicSpline(t, v, bc_type="natural", extrapolate=False)
+
+    def evaluate(self, u: np.ndarray) -> np.ndarray:
+        """Exact curve values; before the first point and after the last the end values hold."""
+        u = np.asarray(u, dtype=np.float64)
+        first, last = self.points[0], self.points[-1]
+        out = np.asarray(self._curve(np.clip(u, first[0], last[0])), dtype=np.float64)
+        out = np.where(u <= first[0], first[1], out)
+        out = np.where(u >= last[0], last[1], out)
+        return np.where((u < 0) | (u > self.duration), 0.0, out)
+
+    def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
+        return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
+
+    def with_name(self, name: str) -> SplineTile:
+        return SplineTile(self.points, self.duration, self.method, name)
+
+
+@dataclass(frozen=True)
+class GeneratorTile:
+    """A closed-form shape (sine, chirp, detents, ...) exact at any rate; zero outside its span."""
+
+    generator: str
+    duration: float
+    params: tuple[tuple[str, float], ...] = field(default=())
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        if self.generator not in GENERATORS:
+            raise EditError(
+                f"unknown generator {self.generator!r} (choose from {', '.join(GENERATORS)})"
+            )
+        spec = GENERATORS[self.generator]
+        given = dict(self.params)
+        unknown = set(given) - set(spec.defaults)
+        if unknown:
+            raise EditError(
+                f"generator {self.generator!r} has no parameter {sorted(unknown)[0]!r} "
+                f"(it takes {', '.join(spec.defaults)})"
+            )
+        merged = {**spec.defaults, **{k: float(v) for k, v in given.items()}}
+        if not all(math.isfinite(v) for v in merged.values()):
+            raise EditError(f"generator {self.generator!r} parameters must be finite numbers")
+        object.__setattr__(self, "params", tuple(sorted(merged.items())))
+        object.__setattr__(self, "duration", _check_duration(self.duration))
+        if not self.name:
+            object.__setattr__(self, "name", self.generator)
+
+    reverse_shift = 0.0
+
+    @property
+    def key(self) -> str:
+        return "gen:" + json.dumps([self.generator, self.duration, self.params])
+
+    def param(self, name: str) -> float:
+        return dict(self.params)[name]
+
+    def evaluate(self, u: np.ndarray) -> np.ndarray:
+        """Exact values at positions u; zero outside [0, duration]."""
+        u = np.asarray(u, dtype=np.float64)
+        with np.errstate(all="ignore"):
+            values = GENERATORS[self.generator].function(u, self.duration, **dict(self.params))
+        values = np.asarray(values, dtype=np.float64)
+        return np.where((u < 0) | (u > self.duration), 0.0, values)
+
+    def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
+        return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
+
+    def with_name(self, name: str) -> GeneratorTile:
+        return GeneratorTile(self.generator, self.duration, self.params, name)
+
+
+Tile = SampledTile | SplineTile | GeneratorTile
+
+
+def generator(name: str, duration: float, title: str = "", **params: Any) -> GeneratorTile:
+    """Make a generator tile, e.g. generator("sine", 1.0, frequency=10)."""
+    return GeneratorTile(name, duration, tuple(params.items()), title)
+
+
+def spline(
+    points: list[tuple[float, float]], duration: float | None = None, method: str = "natural",
+    name: str = "spline",
+) -> SplineTile:
+    """Make a spline tile from control points; duration defaults to the last point's time."""
+    if duration is None:
+        duration = max(t for t, _ in points) if points else 0.0
+    return SplineTile(tuple(points), duration, method, name)

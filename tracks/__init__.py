@@ -1,0 +1,1 @@
+"""Built-in track kinds, registered through the haptic_timeline.tracks entry point."""
