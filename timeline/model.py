@@ -40,7 +40,9 @@ class Fade:
         if length < 0:
             raise EditError(f"a fade's length cannot be negative ({length})")
         if self.shape not in FADE_SHAPES:
-            raise EditError(f"unknown fade shape {self.shape!r} (choose from {', '.join(FADE_SHAPES)})")
+            raise EditError(
+                f"unknown fade shape {self.shape!r} (choose from {', '.join(FADE_SHAPES)})"
+            )
         object.__setattr__(self, "length", length)
 
 
@@ -72,9 +74,20 @@ class Clip:
     fade_out: Fade = Fade()
 
     def __post_init__(self) -> None:
-        for name in ("start", "source_in", "source_out", "stretch", "loop_phase", "gain", "scale",
-                     "offset", "pivot"):
-            object.__setattr__(self, name, _finite(f"a clip's {name.replace('_', ' ')}", getattr(self, name)))
+        for name in (
+            "start",
+            "source_in",
+            "source_out",
+            "stretch",
+            "loop_phase",
+            "gain",
+            "scale",
+            "offset",
+            "pivot",
+        ):
+            object.__setattr__(
+                self, name, _finite(f"a clip's {name.replace('_', ' ')}", getattr(self, name))
+            )
         if self.source_out <= self.source_in:
             raise EditError("a clip must play a source range of positive length")
         if self.stretch <= 0:

@@ -31,5 +31,7 @@ def get(group: str, name: str) -> Any:
     plugins = load_group(group)
     if name not in plugins:
         choices = ", ".join(sorted(plugins)) or "none"
-        raise PluginError(f"unknown {group.rsplit('.', 1)[-1][:-1]} {name!r} (choose from {choices})")
+        raise PluginError(
+            f"unknown {group.rsplit('.', 1)[-1][:-1]} {name!r} (choose from {choices})"
+        )
     return plugins[name]

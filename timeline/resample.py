@@ -22,8 +22,10 @@ def sample_grid(
         return np.zeros(0)
     step = du * rate  # source samples per output sample
     start = u0 * rate
-    if step == 1.0 and start == np.floor(start):
-        return _take(data, int(start), n)
+    if abs(step) == 1.0 and start == np.floor(start):
+        if step > 0:
+            return _take(data, int(start), n)
+        return _take(data, int(start) - n + 1, n)[::-1].copy()
     if quality.resampler == "linear" or abs(step) < 1.0:
         # Upsampling (step < 1) adds no content above the source's Nyquist: interpolation suffices,
         # but for normal/exact use cubic to keep the passband flat.

@@ -219,7 +219,9 @@ def generator(name: str, duration: float, title: str = "", **params: Any) -> Gen
 
 
 def spline(
-    points: list[tuple[float, float]], duration: float | None = None, method: str = "natural",
+    points: list[tuple[float, float]],
+    duration: float | None = None,
+    method: str = "natural",
     name: str = "spline",
 ) -> SplineTile:
     """Make a spline tile from control points; duration defaults to the last point's time."""

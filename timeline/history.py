@@ -1,0 +1,81 @@
+"""Undo/redo over project states; a drag merges its steps into one entry."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from timeline.model import Project
+
+
+@dataclass(frozen=True)
+class Step:
+    """One entry: the state after an action, its label, and a key that later steps may merge on."""
+
+    project: Project
+    label: str
+    merge_key: object = None
+
+
+class History:
+    """A linear undo history of immutable project states, with a clean (saved) mark."""
+
+    def __init__(self, project: Project) -> None:
+        self._steps: list[Step] = [Step(project, "open")]
+        self._index = 0
+        self._clean: int | None = 0
+
+    @property
+    def project(self) -> Project:
+        return self._steps[self._index].project
+
+    def do(self, label: str, project: Project, merge_key: object = None) -> Project:
+        """Record a new state; with the same non-None merge_key as the last step, replace it."""
+        del self._steps[self._index + 1 :]
+        if self._clean is not None and self._clean > self._index:
+            self._clean = None
+        top = self._steps[self._index]
+        if merge_key is not None and top.merge_key == merge_key and self._index > 0:
+            if self._clean == self._index:
+                self._clean = None
+            self._steps[self._index] = Step(project, label, merge_key)
+        else:
+            self._steps.append(Step(project, label, merge_key))
+            self._index += 1
+        return project
+
+    def undo(self) -> Project:
+        if self.can_undo:
+            self._index -= 1
+        return self.project
+
+    def redo(self) -> Project:
+        if self.can_redo:
+            self._index += 1
+        return self.project
+
+    @property
+    def can_undo(self) -> bool:
+        return self._index > 0
+
+    @property
+    def can_redo(self) -> bool:
+        return self._index < len(self._steps) - 1
+
+    @property
+    def undo_label(self) -> str:
+        return self._steps[self._index].label if self.can_undo else ""
+
+    @property
+    def redo_label(self) -> str:
+        return self._steps[self._index + 1].label if self.can_redo else ""
+
+    def mark_clean(self) -> None:
+        """Remember the current state as saved."""
+        self._clean = self._index
+
+    @property
+    def modified(self) -> bool:
+        return self._clean != self._index
+
+    def __len__(self) -> int:
+        return len(self._steps)
