@@ -1,0 +1,161 @@
+"""Audio files through soundfile/libsndfile: read a recording as a tile, write mixed layers.
+
+Reading keeps the file's samples exactly (as float64) and its rate; the mixer resamples to the
+project rate. Files are read in blocks into one preallocated array, so an hour-long file costs
+the array plus the tile's own copy, and progress is reported per block.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import soundfile as sf
+
+from timeline.formats import FormatError, Layers, Progress
+from timeline.tiles import SampledTile
+
+BLOCK_FRAMES = 1 << 16
+DEFAULT_SUBTYPE = "FLOAT"
+# libsndfile notes a chunk whose declared size runs past the end of the file as
+# "data : 40000 (should be 19979)"; that is a truncated file.
+_SHORT_CHUNK = re.compile(
+    r"^\s*(data|SSND|Riff size|RIFF|FORM)\s*:\s*(\d+)\s*\(should be (\d+)\)", re.MULTILINE
+)
+
+
+def _open(path: Path) -> sf.SoundFile:
+    try:
+        return sf.SoundFile(path)
+    except sf.LibsndfileError as exc:
+        reason = str(exc.error_string).rstrip(".")
+        raise FormatError(f"{path.name} is not an audio file that can be read ({reason})") from None
+    except (RuntimeError, TypeError, ValueError) as exc:
+        raise FormatError(f"{path.name} is not an audio file that can be read ({exc})") from None
+
+
+def _check_complete(path: Path, f: sf.SoundFile) -> None:
+    for match in _SHORT_CHUNK.finditer(f.extra_info):
+        if int(match.group(3)) < int(match.group(2)):
+            raise FormatError(
+                f"{path.name} is truncated: its header promises more audio than the file holds"
+            )
+
+
+def _channel_index(channel: int | str | None, channels: int, name: str) -> int | None:
+    """The 0-based channel to keep, or None to mix all channels down (the mean)."""
+    if channel is None or channel == "mix":
+        return None if channels > 1 else 0
+    try:
+        number = int(channel)
+    except (TypeError, ValueError):
+        raise FormatError(f"channel must be a number from 1 or 'mix', not {channel!r}") from None
+    if not 1 <= number <= channels:
+        raise FormatError(f"{name} has {channels} channel(s); there is no channel {number}")
+    return number - 1
+
+
+class AudioFormat:
+    """WAV (all PCM, float, u-law/A-law, extensible, RF64), FLAC, OGG/Vorbis, AIFF, ..."""
+
+    name = "audio"
+    extensions = (
+        ".wav",
+        ".wave",
+        ".rf64",
+        ".w64",
+        ".flac",
+        ".ogg",
+        ".oga",
+        ".aif",
+        ".aiff",
+        ".aifc",
+        ".au",
+        ".snd",
+        ".caf",
+    )
+    reads = "tile"
+    writes = "layers"
+    options = ("channel",)
+
+    def read(
+        self,
+        path: Path,
+        *,
+        progress: Progress | None = None,
+        channel: int | str | None = None,
+        **options: Any,
+    ) -> SampledTile:
+        """Read one channel (1-based) or the mean of all channels ("mix", the default) as a tile."""
+        path = Path(path)
+        with _open(path) as f:
+            _check_complete(path, f)
+            keep = _channel_index(channel, f.channels, path.name)
+            data = self._read_blocks(path, f, keep, progress)
+            rate = f.samplerate
+        suffix = "" if keep is None or f.channels == 1 else f" ch{keep + 1}"
+        return SampledTile(data, rate, path.stem + suffix, str(path))
+
+    @staticmethod
+    def _read_blocks(
+        path: Path, f: sf.SoundFile, keep: int | None, progress: Progress | None
+    ) -> np.ndarray:
+        total = f.frames
+        if total <= 0:
+            raise FormatError(f"{path.name} holds no audio samples")
+        out = np.empty(total, dtype=np.float64)
+        done = 0
+        block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=np.float64)
+        try:
+            while done < total:
+                n = f.read(out=block[: min(BLOCK_FRAMES, total - done)]).shape[0]
+                if n == 0:
+                    break
+                part = block[:n]
+                if keep is None:
+                    np.mean(part, axis=1, out=out[done : done + n])
+                else:
+                    out[done : done + n] = part[:, keep]
+                if not np.isfinite(out[done : done + n]).all():
+                    bad = done + int(np.flatnonzero(~np.isfinite(out[done : done + n]))[0])
+                    raise FormatError(
+                        f"{path.name} has a sample that is not a finite number (frame {bad})"
+                    )
+                done += n
+                if progress is not None:
+                    progress(done / total)
+        except sf.LibsndfileError as exc:
+            raise FormatError(
+                f"{path.name} could not be read to the end ({exc.error_string})"
+            ) from None
+        if done < total:
+            raise FormatError(f"{path.name} is truncated: it ends after {done} of {total} frames")
+        return out
+
+    def write(self, source: Layers, path: Path, subtype: str | None = None, **options: Any) -> None:
+        """Write the layers as channels (in column order) at their rate; float by default."""
+        path = Path(path)
+        columns = [np.asarray(v, dtype=np.float64) for v in source.columns.values()]
+        frames = np.zeros((source.length, len(columns)))
+        for i, col in enumerate(columns):
+            frames[: len(col), i] = col
+        subtype = (subtype or DEFAULT_SUBTYPE).upper()
+        rate = source.rate
+        if rate != int(rate) or rate < 1:
+            raise FormatError(f"audio files need a whole-number rate, not {rate} Hz")
+        try:
+            sf.write(path, frames, int(rate), subtype=subtype, format=_container(path))
+        except (sf.LibsndfileError, ValueError, TypeError) as exc:
+            raise FormatError(f"cannot write {path.name} as {subtype} audio ({exc})") from None
+
+
+def _container(path: Path) -> str:
+    ext = path.suffix.lower().lstrip(".")
+    return {"wave": "WAV", "aif": "AIFF", "aifc": "AIFF", "oga": "OGG", "snd": "AU"}.get(
+        ext, ext.upper()
+    )
+
+
+FORMAT = AudioFormat()

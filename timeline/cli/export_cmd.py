@@ -1,0 +1,37 @@
+"""`haptic-timeline export PROJECT -o OUT.ext`: a design to AHAP, .haptic, OTIO, .mat, CSV, WAV."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from timeline.cli.options import positive
+from timeline.exporting import export_project_file
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "export", help="export a project to .ahap, .haptic, .otio, .mat, .csv, .txt or .wav"
+    )
+    p.add_argument("project", help="a .htl project file")
+    p.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        metavar="OUT.ext",
+        help="the file to write; its extension picks the format",
+    )
+    p.add_argument(
+        "--rate",
+        type=positive,
+        default=None,
+        metavar="R",
+        help="sample rate of the written layers (default: the project's)",
+    )
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    export_project_file(args.project, args.output, rate=args.rate)
+    print(f"exported {args.project} -> {args.output}", file=sys.stderr)
+    return 0

@@ -1,0 +1,103 @@
+"""Export a project (or one tile) to a file, choosing the writer by the file's extension.
+
+Shared by the CLI (`haptic-timeline export`) and the GUI. Files are written to a temporary name
+beside the target and renamed into place, so a failed export never leaves a partial file.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from timeline import mixer
+from timeline.errors import HapticTimelineError
+from timeline.formats import FormatError, Layers, writer_for
+from timeline.model import Project
+from timeline.tiles import SampledTile, Tile
+
+
+def project_layers(project: Project, rate: float | None = None, quality: str = "normal") -> Layers:
+    """The project's mixed layers from 0 to its end, at `rate` (default: the project's rate)."""
+    if project.duration <= 0:
+        raise FormatError("the project has no clips to export")
+    rate = float(rate or project.rate)
+    columns = mixer.render(project, 0.0, project.duration, rate, quality)
+    if not columns:
+        raise FormatError("every track with clips is muted, so there is nothing to export")
+    return Layers(columns, rate, 0.0, project.axis)
+
+
+def tile_layers(tile: Tile, rate: float | None = None, name: str = "value") -> Layers:
+    """One tile as a single column: a sampled tile's own samples, other tiles rendered at `rate`."""
+    if isinstance(tile, SampledTile) and rate in (None, tile.rate):
+        return Layers({name: tile.data}, tile.rate)
+    if rate is None:
+        raise FormatError(f"tile {tile.name!r} is not sampled: give a rate to export it")
+    from timeline.quality import preset
+
+    n = max(1, round(tile.duration * rate))
+    return Layers({name: tile.render(0.0, 1.0 / rate, n, preset("exact"))}, float(rate))
+
+
+def write_atomically(path: Path, write: Callable[[Path], None]) -> None:
+    """Call write(temporary path) and rename the result onto path; on failure remove it."""
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise FormatError(f"cannot write {path}: the folder {folder} does not exist")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=folder)
+    os.close(fd)
+    try:
+        write(Path(tmp))
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def export_project(
+    project: Project, path: str | os.PathLike, *, rate: float | None = None, **options: Any
+) -> None:
+    """Write a project to a file whose extension picks the format (.wav, .csv, .mat, .ahap, ...)."""
+    path = Path(path)
+    fmt = writer_for(path)
+    if fmt.writes == "layers":
+        source: Any = project_layers(project, rate)
+    else:
+        if project.duration <= 0:
+            raise FormatError("the project has no clips to export")
+        source = project
+        if rate is not None:
+            options["rate"] = rate
+    _write(fmt, source, path, options)
+
+
+def export_tile(
+    tile: Tile, path: str | os.PathLike, *, rate: float | None = None, **options: Any
+) -> None:
+    """Write one tile as a single column (.csv, .txt, .mat, .wav): the palette's save-as."""
+    path = Path(path)
+    fmt = writer_for(path)
+    if fmt.writes != "layers":
+        raise FormatError(f"a single tile cannot be written as {fmt.name}; export a project")
+    _write(fmt, tile_layers(tile, rate, name=options.pop("name", "value")), path, options)
+
+
+def _write(fmt: Any, source: Any, path: Path, options: dict[str, Any]) -> None:
+    try:
+        write_atomically(path, lambda tmp: fmt.write(source, tmp, **options))
+    except HapticTimelineError:
+        raise
+    except OSError as exc:
+        raise FormatError(f"cannot write {path} ({exc.strerror or exc})") from None
+
+
+def export_project_file(
+    project_path: str | os.PathLike, path: str | os.PathLike, **kwargs: Any
+) -> None:
+    """Load a project file and export it (see export_project)."""
+    from timeline import projectfile
+
+    export_project(projectfile.load(project_path), path, **kwargs)

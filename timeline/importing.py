@@ -1,0 +1,157 @@
+"""Import a file into a project: find the format, read it, place its tiles as clips.
+
+Shared by the CLI (`haptic-timeline import`) and the GUI. Every function here is pure with respect
+to the project: a failure raises one HapticTimelineError and leaves no partial change behind.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+from timeline import edits
+from timeline.errors import HapticTimelineError
+from timeline.formats import (
+    FormatError,
+    Imported,
+    Progress,
+    TrackInfo,
+    as_imported,
+    readers_for,
+)
+from timeline.kinds import track_kind
+from timeline.model import Project
+
+DEFAULT_KIND = "drive"
+
+
+def check_readable(path: Path) -> None:
+    """Raise FormatError unless path is an existing, non-empty regular file."""
+    if not path.exists():
+        raise FormatError(f"{path} does not exist")
+    if path.is_dir():
+        raise FormatError(f"{path} is a directory, not a file")
+    if path.stat().st_size == 0:
+        raise FormatError(f"{path.name} is empty (zero bytes)")
+
+
+def read_file(
+    path: str | os.PathLike, *, progress: Progress | None = None, **options: Any
+) -> Imported:
+    """Read a file with the first format for its extension that recognises it.
+
+    Options left as None are dropped; an option the format does not take is refused.
+    """
+    path = Path(path)
+    check_readable(path)
+    given = {k: v for k, v in options.items() if v is not None}
+    for fmt in readers_for(path):
+        unused = sorted(set(given) - set(fmt.options))
+        if unused:
+            raise FormatError(f"the {unused[0]} option does not apply to {fmt.name} files")
+        try:
+            result = fmt.read(path, progress=progress, **given)
+        except FormatError:
+            raise
+        except HapticTimelineError as exc:
+            raise FormatError(f"{path.name} cannot be imported: {exc}") from None
+        except OSError as exc:
+            raise FormatError(f"cannot read {path.name} ({exc.strerror or exc})") from None
+        if result is not None:
+            return as_imported(result)
+    raise FormatError(f"{path.name} is not a file any {path.suffix.lower()} format recognises")
+
+
+def import_file(
+    project: Project,
+    path: str | os.PathLike,
+    *,
+    kind: str | None = None,
+    at: float = 0.0,
+    gain: float = 1.0,
+    progress: Progress | None = None,
+    **options: Any,
+) -> tuple[Project, list[str]]:
+    """Import a file into a project at time `at`; returns the new project and the new clip ids.
+
+    A tile goes on the first track of `kind` (default drive), created if needed; a design's clips
+    go on tracks of their own kinds: the file's n-th track of a kind on the project's n-th.
+    """
+    imported = read_file(path, progress=progress, **options)
+    return place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
+
+
+def place(
+    project: Project,
+    imported: Imported,
+    *,
+    kind: str = DEFAULT_KIND,
+    at: float = 0.0,
+    gain: float = 1.0,
+) -> tuple[Project, list[str]]:
+    """Add an import's tiles to the palette and its placements as clips (see import_file)."""
+    infos = {t.name: t for t in imported.tracks}
+    targets: dict[tuple[str, str], str] = {}  # (kind, source track name) -> project track id
+    tile_ids: dict[int, str] = {}  # id(tile) -> project tile id: a tile placed twice is added once
+    clip_ids: list[str] = []
+    for placement in imported.placements:
+        track_kind_id = placement.kind or kind
+        project, track_id = _target_track(project, track_kind_id, placement.track, targets, infos)
+        if id(placement.tile) not in tile_ids:
+            project, tile_ids[id(placement.tile)] = edits.add_tile(project, placement.tile)
+        fields = dict(placement.clip)
+        fields["gain"] = gain * fields.get("gain", 1.0)
+        project, clip_id = edits.add_clip(
+            project, track_id, tile_ids[id(placement.tile)], at + placement.start, **fields
+        )
+        clip_ids.append(clip_id)
+    return project, clip_ids
+
+
+def _target_track(
+    project: Project,
+    kind: str,
+    source_track: str,
+    targets: dict[tuple[str, str], str],
+    infos: dict[str, TrackInfo],
+) -> tuple[Project, str]:
+    """The project track for a source track: the n-th of its kind, created when missing."""
+    key = (kind, source_track)
+    if key in targets:
+        return project, targets[key]
+    track_kind(kind)  # an unknown kind fails here with the choices named
+    used = sum(1 for k, _ in targets if k == kind)
+    existing = [t.id for t in project.tracks if t.kind == kind]
+    if used < len(existing):
+        targets[key] = existing[used]
+        return project, targets[key]
+    info = infos.get(source_track)
+    if info is None:
+        project, track_id = edits.add_track(project, kind)
+    else:
+        project, track_id = edits.add_track(
+            project, kind, info.name, gain=info.gain, mute=info.mute, solo=info.solo
+        )
+    targets[key] = track_id
+    return project, track_id
+
+
+def import_into_project_file(
+    path: str | os.PathLike,
+    project_path: str | os.PathLike,
+    *,
+    progress: Progress | None = None,
+    **kwargs: Any,
+) -> list[str]:
+    """Import into a project file (created on the time axis at 10 kHz if missing), atomically.
+
+    On any error the project file is left exactly as it was.
+    """
+    from timeline import projectfile
+
+    project_path = Path(project_path)
+    project = projectfile.load(project_path) if project_path.exists() else edits.new_project()
+    project, clip_ids = import_file(project, path, progress=progress, **kwargs)
+    projectfile.save(project, project_path)
+    return clip_ids
