@@ -35,11 +35,22 @@ from timeline.tiles import SampledTile, Tile
 _EDGE_TOLERANCE = 1e-9  # relative slack when a source edge lands on the tile's end
 
 
-def new_project(axis: str = "time", rate: float | None = None, **metadata: Any) -> Project:
-    """An empty project on the time axis (10 kHz) or the position axis (one sample per 0.01 deg)."""
+def new_project(
+    axis: str = "time", rate: float | None = None, templates: bool = True, **metadata: Any
+) -> Project:
+    """An empty project on the time axis (10 kHz) or the position axis (one sample per 0.01 deg).
+
+    With templates, the Templates tab holds one tile of every generator.
+    """
+    from timeline.templates import template_tiles
+
     if rate is None:
         rate = DEFAULT_TIME_RATE if axis == "time" else DEFAULT_POSITION_RATE
-    return Project(axis=axis, rate=rate, metadata=metadata)
+    project = Project(axis=axis, rate=rate, metadata=metadata)
+    if templates:
+        for tile in template_tiles(axis):
+            project, _ = add_tile(project, tile, "Templates")
+    return project
 
 
 # --- tracks -----------------------------------------------------------------------------------

@@ -146,6 +146,16 @@ def dumps(project: Project) -> str:
         raise ProjectFileError(f"the project cannot be saved: {exc}") from None
 
 
+def _file_mode(path: Path) -> int:
+    """Keep an existing file's permissions; a new file gets the usual 0666 less the umask."""
+    try:
+        return path.stat().st_mode & 0o777
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
 def save(project: Project, path: str | os.PathLike) -> None:
     """Write the project atomically: the old file stays intact until the new one is complete."""
     path = Path(path)
@@ -153,6 +163,7 @@ def save(project: Project, path: str | os.PathLike) -> None:
     folder = path.parent if str(path.parent) else Path(".")
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
     try:
+        os.chmod(tmp, _file_mode(path))
         with os.fdopen(fd, "wb") as f:
             f.write(text)
             f.flush()
