@@ -1,0 +1,70 @@
+"""The `sim` device plugin: the simulated knob behind the host device protocol."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+from device.sim.params import KnobParams
+from device.sim.physics import KnobPhysics
+from timeline.devices import (
+    CoefficientBlock,
+    Device,
+    DeviceInfo,
+    Hand,
+    PositionProgram,
+    Progress,
+    Telemetry,
+)
+
+POSITION_CHUNK = 0.05  # s of a position program simulated between progress reports
+
+
+class SimKnob(Device):
+    """A simulated force-feedback knob (the paper's knob by default) with a hand model."""
+
+    def __init__(self, integrator: str = "zoh", substeps: int = 1, **params: Any) -> None:
+        self.params = KnobParams(**params)
+        self.physics = KnobPhysics(self.params, integrator, substeps)
+
+    @property
+    def info(self) -> DeviceInfo:
+        p = self.params
+        return DeviceInfo("sim", "kinesthetic", p.rate, p.max_torque, p.quantum, p.firmware)
+
+    @classmethod
+    def discover(cls) -> list[str]:
+        p = KnobParams()
+        return [
+            f"simulated knob: {p.rate:g} Hz, {p.max_torque * 1e3:g} mNm, "
+            f"{p.quantum * 180 / 3.141592653589793:g} deg encoder (always available)"
+        ]
+
+    def play(
+        self,
+        program: Iterable[CoefficientBlock] | PositionProgram,
+        hand: Hand | None = None,
+        progress: Progress | None = None,
+    ) -> Telemetry:
+        """Play blocks (time mode) or a position program from the knob's current angle."""
+        self.physics.start(hand)
+        parts = []
+        if isinstance(program, PositionProgram):
+            total_n = round(program.duration * self.params.rate)
+            chunk = max(1, round(POSITION_CHUNK * self.params.rate))
+            for n0 in range(0, total_n, chunk):
+                parts.append(self.physics.run_table(program, min(chunk, total_n - n0)))
+                if progress:
+                    progress(self.physics.samples / self.params.rate, program.duration)
+        else:
+            total = len(program) if hasattr(program, "__len__") else None
+            for i, block in enumerate(program):
+                parts.append(self.physics.run_block(block))
+                if progress:
+                    seconds = self.physics.samples / self.params.rate
+                    progress(seconds, None if total is None else seconds * total / (i + 1))
+                if self.physics.failed:
+                    break
+        if not parts:
+            parts.append(self.physics.run_block(CoefficientBlock.zeros(0)))
+        return Telemetry.concatenate(parts)

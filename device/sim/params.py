@@ -1,0 +1,49 @@
+"""The simulated knob's physical and firmware constants (defaults: the paper's knob)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from timeline.devices import DeviceError
+
+ENCODER_QUANTUM = math.radians(0.001)  # rad per count: 0.001 deg
+
+
+@dataclass(frozen=True)
+class KnobParams:
+    """A knob: rotor, friction, encoder, amplifier limit, estimator filters and watchdog.
+
+    Defaults follow the paper's knob (10 kHz, 0.001 deg encoder, 180 mNm max continuous
+    torque); the rotor inertia and friction are stated in docs/devices.md.
+    """
+
+    rate: float = 10_000.0  # Hz servo rate
+    quantum: float = ENCODER_QUANTUM  # rad per encoder count; 0 = ideal sensor
+    max_torque: float = 0.18  # N*m max continuous torque
+    inertia: float = 1e-5  # kg*m^2 rotor and knob (J)
+    viscous: float = 1e-4  # N*m*s/rad physical viscous damping (b_dev)
+    coulomb: float = 1e-3  # N*m Coulomb friction
+    velocity_cutoff: float = 2_000.0  # Hz first-order low-pass on the velocity estimate; 0 = none
+    acceleration_cutoff: float = 200.0  # Hz low-pass on the acceleration estimate; 0 = none
+    watchdog_timeout: float = 0.005  # s without a block before the torque starts ramping down
+    watchdog_ramp: float = 0.010  # s from the last torque to zero
+    firmware: str = "sim-1.0"
+
+    def __post_init__(self) -> None:
+        for name in self.__dataclass_fields__:
+            value = getattr(self, name)
+            if name == "firmware":
+                continue
+            if not math.isfinite(value) or value < 0:
+                raise DeviceError(f"the knob's {name.replace('_', ' ')} must be >= 0, not {value}")
+        if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
+            raise DeviceError("the knob's rate, max torque and inertia must be positive")
+
+    @property
+    def period(self) -> float:
+        return 1.0 / self.rate
+
+    def smoothing(self, cutoff: float) -> float:
+        """Gain of a first-order low-pass at a cut-off (1.0 = no filtering)."""
+        return 1.0 if cutoff <= 0 else 1.0 - math.exp(-2.0 * math.pi * cutoff / self.rate)

@@ -1,0 +1,316 @@
+"""The simulated knob stepped servo period by servo period, the way its firmware would run.
+
+Each period: read the encoder (quantised, relative to the anchor), estimate velocity (backward
+difference, low-passed) and, only when a mass layer exists, acceleration (difference of the
+velocity estimate, low-passed); compute tau = d - k*theta - b*theta_dot - m*theta_ddot (or the
+position tables' T - B*theta_dot - M*theta_ddot); replace NaN by 0 and clamp to the maximum;
+hold it over the period while the mechanics (rotor, viscous and Coulomb friction, the hand)
+advance by a precomputed linear map (plant.py). State persists between blocks, so a USB
+emulation can feed blocks as they arrive and call `run_idle` when none arrive (watchdog).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from device.sim.params import KnobParams
+from device.sim.plant import step_matrix, system_matrix
+from device.sim.stability import stability_flags
+from timeline.devices import (
+    CoefficientBlock,
+    DeviceError,
+    Hand,
+    PositionProgram,
+    PositionTable,
+    StabilityFlag,
+    Telemetry,
+)
+
+BLOW_UP_SPEED = 1e6  # rad/s: beyond this the simulation is numerically broken, not physical
+
+
+class KnobPhysics:
+    """The knob, its firmware and a hand; advance it with run_block / run_table / run_idle."""
+
+    def __init__(
+        self, params: KnobParams | None = None, integrator: str = "zoh", substeps: int = 1
+    ) -> None:
+        self.params = params or KnobParams()
+        self.integrator = integrator
+        self.substeps = substeps
+        self.theta = 0.0  # true absolute angle (rad)
+        self.omega = 0.0  # true speed (rad/s)
+        self._maps: dict[tuple[float, ...], tuple[float, ...]] = {}
+        self.start(Hand("hold"))
+
+    # --- set-up ---------------------------------------------------------------------------
+
+    def _step_map(self, hand: Hand) -> tuple[float, ...]:
+        p = self.params
+        inertia = p.inertia + (hand.inertia if hand.touches else 0.0)
+        grip_k, grip_b = (hand.grip_stiffness, hand.grip_damping) if hand.grips else (0.0, 0.0)
+        key = (inertia, grip_k, grip_b)
+        if key not in self._maps:
+            a = system_matrix(inertia, p.viscous, grip_k, grip_b)
+            m = step_matrix(a, p.period, self.integrator, self.substeps)
+            self._maps[key] = tuple(float(x) for x in m[:2].ravel())
+        return self._maps[key]
+
+    def _quantise(self, angle: float) -> float:
+        q = self.params.quantum
+        return math.floor(angle / q + 0.5) * q if q else angle
+
+    def start(self, hand: Hand | None = None) -> None:
+        """Begin a play: the current angle becomes the anchor (theta = 0); estimators reset."""
+        self.hand = hand or Hand("hold")
+        self._map = self._step_map(self.hand)
+        self.anchor = self._quantise(self.theta)
+        self.grip_target = self.theta
+        self.samples = 0  # samples since start
+        self.energy = 0.0
+        self.prev_meas = 0.0
+        self.vel = 0.0
+        self.prev_vel = 0.0
+        self.acc = 0.0
+        self.idle = 0  # samples since the last block arrived
+        self.last: CoefficientBlock | PositionProgram | None = None
+        self.failed: str | None = None
+
+    # --- public stepping -----------------------------------------------------------------
+
+    def run_block(self, block: CoefficientBlock) -> Telemetry:
+        """Render one block of coefficients (one value per servo period)."""
+        block = block.safe()
+        self.idle = 0
+        self.last = (
+            CoefficientBlock(
+                block.d[-1:], block.k[-1:], block.b[-1:], None if block.m is None else block.m[-1:]
+            )
+            if len(block)
+            else self.last
+        )
+        coeffs = (
+            block.d.tolist(),
+            block.k.tolist(),
+            block.b.tolist(),
+            None if block.m is None else block.m.tolist(),
+        )
+        tel = self._run(len(block), coeffs=coeffs)
+        layers = {"d": block.d, "k": block.k, "b": block.b}
+        if block.m is not None:
+            layers["m"] = block.m
+        n = len(tel)
+        layers = {name: values[:n] for name, values in layers.items()}
+        flags = stability_flags(tel.time, layers["k"], layers["b"], layers.get("m"), self.params)
+        return _with(tel, layers, flags)
+
+    def run_table(self, program: PositionProgram, n: int) -> Telemetry:
+        """Render n servo periods of a position program (tables looked up at the knob's angle)."""
+        self.idle = 0
+        self.last = program
+        return self._run_table(program, n)
+
+    def run_idle(self, n: int) -> Telemetry:
+        """n servo periods with no block arriving: the watchdog ramps the torque to zero.
+
+        The last coefficients keep rendering for `watchdog_timeout`, then the torque is scaled
+        down linearly to zero over `watchdog_ramp`; from then on it is exactly zero.
+        """
+        p = self.params
+        t = (self.idle + np.arange(n)) * p.period
+        ramp = p.watchdog_ramp
+        if ramp > 0:
+            gain = np.clip(1.0 - (t - p.watchdog_timeout) / ramp, 0.0, 1.0)
+        else:
+            gain = (t < p.watchdog_timeout).astype(float)
+        self.idle += n
+        last = self.last
+        if isinstance(last, PositionProgram):
+            return self._run_table(last, n, gain.tolist())
+        if last is None:
+            last = CoefficientBlock.zeros(1)
+        reps = [
+            np.repeat(a, n).tolist() if a is not None else None
+            for a in (last.d, last.k, last.b, last.m)
+        ]
+        tel = self._run(n, coeffs=tuple(reps), gain=gain.tolist())
+        return _with(tel, {"d": np.asarray(reps[0]) * gain[: len(tel)]}, [])
+
+    # --- the loop ------------------------------------------------------------------------
+
+    def _run_table(
+        self, program: PositionProgram, n: int, gain: list[float] | None = None
+    ) -> Telemetry:
+        table = program.table
+        tel = self._run(n, table=(table, program.origin), gain=gain)
+        where = program.origin + tel.angle
+        grid = table.angles()
+        layers = {"d": np.interp(where, grid, table.torque)}
+        damping = np.interp(where, grid, table.damping) if table.damping is not None else 0 * where
+        mass = np.interp(where, grid, table.mass) if table.mass is not None else None
+        if table.damping is not None:
+            layers["b"] = damping
+        if mass is not None:
+            layers["m"] = mass
+        flags = stability_flags(tel.time, local_stiffness(table, where), damping, mass, self.params)
+        return _with(tel, layers, flags)
+
+    def _run(
+        self,
+        n: int,
+        coeffs: tuple[list, list, list, list | None] | None = None,
+        table: tuple[PositionTable, float] | None = None,
+        gain: list[float] | None = None,
+    ) -> Telemetry:
+        if self.failed:
+            raise DeviceError(f"the simulated knob stopped earlier: {self.failed}")
+        p = self.params
+        rate, period, quantum, tmax, coulomb = p.rate, p.period, p.quantum, p.max_torque, p.coulomb
+        inv_q = 1.0 / quantum if quantum else 0.0
+        av, aa = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
+        t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = self._map
+        push, push_ramp = self.hand.push_torque, self.hand.push_ramp
+        speed = self.hand.turn_speed
+        floor = math.floor
+        if coeffs is not None:
+            dl, kl, bl, ml = coeffs
+            use_mass = ml is not None
+        else:
+            tab, origin = table
+            tt = tab.torque.tolist()
+            tb = tab.damping.tolist() if tab.damping is not None else None
+            tm = tab.mass.tolist() if tab.mass is not None else None
+            use_mass = tm is not None
+            tstart, trate, tlast = tab.start, tab.rate, len(tt) - 1
+        theta, omega, r = self.theta, self.omega, self.grip_target
+        anchor, prev_meas, vel, prev_vel, acc = (
+            self.anchor,
+            self.prev_meas,
+            self.vel,
+            self.prev_vel,
+            self.acc,
+        )
+        energy = self.energy
+        ang = [0.0] * n
+        vels = [0.0] * n
+        taus = [0.0] * n
+        ens = [0.0] * n
+        sat = [False] * n
+        nonfinite = 0
+        done = n
+        for i in range(n):
+            meas = (floor(theta * inv_q + 0.5) * quantum if quantum else theta) - anchor
+            vel += av * ((meas - prev_meas) * rate - vel)
+            prev_meas = meas
+            if use_mass:
+                acc += aa * ((vel - prev_vel) * rate - acc)
+                prev_vel = vel
+            if coeffs is not None:
+                tau = dl[i] - kl[i] * meas - bl[i] * vel
+                if use_mass:
+                    tau -= ml[i] * acc
+            else:
+                x = (origin + meas - tstart) * trate
+                j = 0 if x <= 0.0 else (tlast if x >= tlast else int(x))
+                f = x - j if 0.0 < x < tlast else 0.0
+                nxt = j + 1 if j < tlast else j
+                tau = tt[j] + f * (tt[nxt] - tt[j])
+                if tb is not None:
+                    tau -= (tb[j] + f * (tb[nxt] - tb[j])) * vel
+                if use_mass:
+                    tau -= (tm[j] + f * (tm[nxt] - tm[j])) * acc
+            if gain is not None:
+                tau *= gain[i]
+            if tau > tmax:
+                tau = tmax
+                sat[i] = True
+            elif tau < -tmax:
+                tau = -tmax
+                sat[i] = True
+            elif tau != tau:
+                tau = 0.0
+                nonfinite += 1
+            u = tau
+            if push:
+                elapsed = (self.samples + i) * period
+                u += push if elapsed >= push_ramp else push * elapsed / push_ramp
+            free = w0 * theta + w1 * omega + w2 * u + w3 * r + w4 * speed
+            if coulomb:
+                fr = -free / w2  # the friction torque that would stop the knob in this period
+                fr = coulomb if fr > coulomb else (-coulomb if fr < -coulomb else fr)
+                u += fr
+                free += w2 * fr
+            new_theta = t0 * theta + t1 * omega + t2 * u + t3 * r + t4 * speed
+            energy += tau * (new_theta - theta)
+            theta, omega = new_theta, free
+            r += speed * period
+            ang[i], vels[i], taus[i], ens[i] = meas, vel, tau, energy
+            if not -BLOW_UP_SPEED < omega < BLOW_UP_SPEED:
+                done = i + 1
+                break
+        flags: list[StabilityFlag] = []
+        warnings: list[str] = []
+        if done < n or not (math.isfinite(theta) and math.isfinite(omega)):
+            self.failed = (
+                f"the simulation blew up at {(self.samples + done) * period:.6g} s "
+                f"(speed beyond {BLOW_UP_SPEED:g} rad/s); results end there"
+            )
+            flags.append(
+                StabilityFlag(
+                    "blow-up",
+                    self.failed,
+                    np.array([(self.samples + done) * period]),
+                    np.array([abs(omega) if math.isfinite(omega) else math.inf]),
+                    "rad/s",
+                )
+            )
+            warnings.append(self.failed)
+            theta, omega = self.theta, 0.0  # keep the stored state finite
+        if nonfinite:
+            warnings.append(f"{nonfinite} non-finite torque samples were replaced by zero")
+        self.theta, self.omega, self.grip_target = theta, omega, r
+        self.prev_meas, self.vel, self.prev_vel, self.acc = prev_meas, vel, prev_vel, acc
+        self.energy = energy
+        time = (self.samples + np.arange(done)) * period
+        self.samples += done
+        return Telemetry(
+            rate,
+            time,
+            np.array(ang[:done]),
+            np.array(vels[:done]),
+            np.array(taus[:done]),
+            np.array(ens[:done]),
+            np.array(sat[:done], dtype=bool),
+            {},
+            tuple(flags),
+            tuple(warnings),
+        )
+
+
+def local_stiffness(table: PositionTable, where: np.ndarray) -> np.ndarray:
+    """-dT/dtheta of the torque table at table angles (0 beyond its ends)."""
+    if table.torque.size < 2:
+        return np.zeros_like(where)
+    slope = -np.diff(table.torque) * table.rate
+    x = (where - table.start) * table.rate
+    inside = (x > 0) & (x < table.torque.size - 1)
+    j = np.clip(np.floor(x).astype(np.int64), 0, slope.size - 1)
+    return np.where(inside, slope[j], 0.0)
+
+
+def _with(tel: Telemetry, layers: dict[str, np.ndarray], flags: list[StabilityFlag]) -> Telemetry:
+    n = len(tel)
+    return Telemetry(
+        tel.rate,
+        tel.time,
+        tel.angle,
+        tel.velocity,
+        tel.torque,
+        tel.energy,
+        tel.saturated,
+        {k: np.asarray(v, dtype=np.float64)[:n] for k, v in layers.items()},
+        tel.flags + tuple(f for f in flags),
+        tel.warnings,
+    )

@@ -1,0 +1,52 @@
+"""One servo period of the knob's mechanics as a linear map (exact, or a stepping scheme).
+
+Between two servo samples the motor torque is held (zero-order hold). With the hand's grip a
+spring-damper to a target angle moving at a constant speed, the mechanics
+
+    (J + J_hand) * omega' = u - b_dev*omega - K_grip*(theta - r) - B_grip*(omega - v),  r' = v
+
+are linear in the augmented state z = [theta, omega, u, r, v], so every integrator is a matrix:
+exact (matrix exponential), semi-implicit Euler, explicit Euler or RK4, with substeps.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import expm
+
+from timeline.devices import DeviceError
+
+INTEGRATORS = ("zoh", "rk4", "semi-implicit", "euler")
+
+
+def system_matrix(inertia: float, damping: float, grip_k: float, grip_b: float) -> np.ndarray:
+    """The continuous augmented system z' = A z for z = [theta, omega, u, r, v]."""
+    a = np.zeros((5, 5))
+    a[0, 1] = 1.0
+    a[1] = [-grip_k, -(damping + grip_b), 1.0, grip_k, grip_b]
+    a[1] /= inertia
+    a[3, 4] = 1.0
+    return a
+
+
+def step_matrix(a: np.ndarray, h: float, integrator: str = "zoh", substeps: int = 1) -> np.ndarray:
+    """The map z(t) -> z(t + h) of an integrator taking `substeps` equal steps."""
+    if integrator not in INTEGRATORS:
+        raise DeviceError(
+            f"unknown integrator {integrator!r} (choose from {', '.join(INTEGRATORS)})"
+        )
+    if substeps < 1:
+        raise DeviceError(f"substeps must be at least 1, not {substeps}")
+    s = h / substeps
+    eye = np.eye(a.shape[0])
+    if integrator == "zoh":
+        return expm(a * h)
+    if integrator == "euler":
+        one = eye + s * a
+    elif integrator == "rk4":
+        sa = s * a
+        one = eye + sa @ (eye + sa @ (eye / 2 + sa @ (eye / 6 + sa / 24)))
+    else:  # semi-implicit (symplectic) Euler: velocity first, then position with the new velocity
+        one = eye + s * a
+        one[0] = eye[0] + s * one[1]
+    return np.linalg.matrix_power(one, substeps)
