@@ -55,7 +55,7 @@ class SimKnob(Device):
             for n0 in range(0, total_n, chunk):
                 parts.append(self.physics.run_table(program, min(chunk, total_n - n0)))
                 if progress:
-                    progress(self.physics.samples / self.params.rate, program.duration)
+                    progress(self.physics.samples / self.params.rate, total_n / self.params.rate)
         else:
             total = len(program) if hasattr(program, "__len__") else None
             for i, block in enumerate(program):

@@ -12,8 +12,10 @@ emulation can feed blocks as they arrive and call `run_idle` when none arrive (w
 from __future__ import annotations
 
 import math
+from itertools import repeat
 
 import numpy as np
+from scipy.signal import lfilter
 
 from device.sim.params import KnobParams
 from device.sim.plant import step_matrix, system_matrix
@@ -43,6 +45,7 @@ class KnobPhysics:
         self.theta = 0.0  # true absolute angle (rad)
         self.omega = 0.0  # true speed (rad/s)
         self._maps: dict[tuple[float, ...], tuple[float, ...]] = {}
+        self._tables: tuple[PositionTable | None, tuple] = (None, ())
         self.start(Hand("hold"))
 
     # --- set-up ---------------------------------------------------------------------------
@@ -60,7 +63,7 @@ class KnobPhysics:
 
     def _quantise(self, angle: float) -> float:
         q = self.params.quantum
-        return math.floor(angle / q + 0.5) * q if q else angle
+        return math.floor(angle * (1.0 / q) + 0.5) * q if q else angle
 
     def start(self, hand: Hand | None = None) -> None:
         """Begin a play: the current angle becomes the anchor (theta = 0); estimators reset."""
@@ -138,6 +141,15 @@ class KnobPhysics:
         tel = self._run(n, coeffs=tuple(reps), gain=gain.tolist())
         return _with(tel, {"d": np.asarray(reps[0]) * gain[: len(tel)]}, [])
 
+    def _table_lists(self, table: PositionTable) -> tuple[list, list, list | None]:
+        """The tables as Python lists (fast to index in the loop), converted once per table."""
+        if self._tables[0] is not table:
+            tt = table.torque.tolist()
+            tb = table.damping.tolist() if table.damping is not None else [0.0] * len(tt)
+            tm = table.mass.tolist() if table.mass is not None else None
+            self._tables = (table, (tt, tb, tm))
+        return self._tables[1]
+
     # --- the loop ------------------------------------------------------------------------
 
     def _run_table(
@@ -171,122 +183,114 @@ class KnobPhysics:
         inv_q = 1.0 / quantum if quantum else 0.0
         av, aa = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
         t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = self._map
-        push, push_ramp = self.hand.push_torque, self.hand.push_ramp
-        speed = self.hand.turn_speed
-        floor = math.floor
-        if coeffs is not None:
-            dl, kl, bl, ml = coeffs
-            use_mass = ml is not None
-        else:
+        push, push_ramp, speed = self.hand.push_torque, self.hand.push_ramp, self.hand.turn_speed
+        zeros = repeat(0.0)
+        in_table = table is not None
+        if in_table:
             tab, origin = table
-            tt = tab.torque.tolist()
-            tb = tab.damping.tolist() if tab.damping is not None else None
-            tm = tab.mass.tolist() if tab.mass is not None else None
+            dl = kl = bl = zeros
+            tt, tb, tm = self._table_lists(tab)
             use_mass = tm is not None
             tstart, trate, tlast = tab.start, tab.rate, len(tt) - 1
+        else:
+            dl, kl, bl, ml = coeffs
+            use_mass = ml is not None
+        ml = zeros if not use_mass or in_table else ml
+        gl = repeat(1.0) if gain is None else gain
         theta, omega, r = self.theta, self.omega, self.grip_target
         anchor, prev_meas, vel, prev_vel, acc = (
-            self.anchor,
-            self.prev_meas,
-            self.vel,
-            self.prev_vel,
-            self.acc,
-        )
-        energy = self.energy
-        ang = [0.0] * n
-        vels = [0.0] * n
+            self.anchor, self.prev_meas, self.vel, self.prev_vel, self.acc
+        )  # fmt: skip
+        elapsed = self.samples * period
+        thetas = [0.0] * n
         taus = [0.0] * n
-        ens = [0.0] * n
-        sat = [False] * n
         nonfinite = 0
-        done = n
-        for i in range(n):
-            meas = (floor(theta * inv_q + 0.5) * quantum if quantum else theta) - anchor
+        for i, d, k, b, m, g in zip(range(n), dl, kl, bl, ml, gl, strict=False):
+            meas = ((theta * inv_q + 0.5) // 1.0 * quantum if quantum else theta) - anchor
             vel += av * ((meas - prev_meas) * rate - vel)
             prev_meas = meas
             if use_mass:
                 acc += aa * ((vel - prev_vel) * rate - acc)
                 prev_vel = vel
-            if coeffs is not None:
-                tau = dl[i] - kl[i] * meas - bl[i] * vel
-                if use_mass:
-                    tau -= ml[i] * acc
-            else:
+            if in_table:  # T(theta) - B(theta)*theta_dot - M(theta)*theta_ddot, linear lookup
                 x = (origin + meas - tstart) * trate
                 j = 0 if x <= 0.0 else (tlast if x >= tlast else int(x))
                 f = x - j if 0.0 < x < tlast else 0.0
                 nxt = j + 1 if j < tlast else j
-                tau = tt[j] + f * (tt[nxt] - tt[j])
-                if tb is not None:
-                    tau -= (tb[j] + f * (tb[nxt] - tb[j])) * vel
+                d = tt[j] + f * (tt[nxt] - tt[j])
+                b = tb[j] + f * (tb[nxt] - tb[j])
                 if use_mass:
-                    tau -= (tm[j] + f * (tm[nxt] - tm[j])) * acc
-            if gain is not None:
-                tau *= gain[i]
+                    m = tm[j] + f * (tm[nxt] - tm[j])
+            tau = (d - k * meas - b * vel - m * acc) * g
             if tau > tmax:
                 tau = tmax
-                sat[i] = True
             elif tau < -tmax:
                 tau = -tmax
-                sat[i] = True
             elif tau != tau:
                 tau = 0.0
                 nonfinite += 1
             u = tau
             if push:
-                elapsed = (self.samples + i) * period
                 u += push if elapsed >= push_ramp else push * elapsed / push_ramp
+                elapsed += period
             free = w0 * theta + w1 * omega + w2 * u + w3 * r + w4 * speed
             if coulomb:
                 fr = -free / w2  # the friction torque that would stop the knob in this period
                 fr = coulomb if fr > coulomb else (-coulomb if fr < -coulomb else fr)
                 u += fr
                 free += w2 * fr
-            new_theta = t0 * theta + t1 * omega + t2 * u + t3 * r + t4 * speed
-            energy += tau * (new_theta - theta)
-            theta, omega = new_theta, free
+            thetas[i] = theta
+            taus[i] = tau
+            theta = t0 * theta + t1 * omega + t2 * u + t3 * r + t4 * speed
+            omega = free
             r += speed * period
-            ang[i], vels[i], taus[i], ens[i] = meas, vel, tau, energy
-            if not -BLOW_UP_SPEED < omega < BLOW_UP_SPEED:
-                done = i + 1
-                break
+        return self._finish(np.array(thetas), np.array(taus), theta, omega, r,
+                            (prev_meas, vel, prev_vel, acc), nonfinite)  # fmt: skip
+
+    def _finish(
+        self,
+        thetas: np.ndarray,
+        taus: np.ndarray,
+        theta: float,
+        omega: float,
+        grip_target: float,
+        estimators: tuple[float, float, float, float],
+        nonfinite: int,
+    ) -> Telemetry:
+        """Turn the loop's record (true angle before each period, torque) into telemetry."""
+        p = self.params
+        path = np.append(thetas, theta)
+        speed = np.abs(np.diff(path)) * p.rate
+        bad = ~np.isfinite(path[1:]) | (speed > BLOW_UP_SPEED)
+        done = int(np.argmax(bad)) if bad.any() else thetas.size
         flags: list[StabilityFlag] = []
         warnings: list[str] = []
-        if done < n or not (math.isfinite(theta) and math.isfinite(omega)):
+        at = (self.samples + done) * p.period
+        if done < thetas.size:
             self.failed = (
-                f"the simulation blew up at {(self.samples + done) * period:.6g} s "
-                f"(speed beyond {BLOW_UP_SPEED:g} rad/s); results end there"
+                f"the simulation blew up at {at:.6g} s (speed beyond {BLOW_UP_SPEED:g} rad/s "
+                "or not a number); results end there"
             )
-            flags.append(
-                StabilityFlag(
-                    "blow-up",
-                    self.failed,
-                    np.array([(self.samples + done) * period]),
-                    np.array([abs(omega) if math.isfinite(omega) else math.inf]),
-                    "rad/s",
-                )
-            )
+            flags.append(StabilityFlag("blow-up", self.failed, np.array([at]), np.array([0.0])))
             warnings.append(self.failed)
-            theta, omega = self.theta, 0.0  # keep the stored state finite
+            thetas, taus, path = thetas[:done], taus[:done], path[: done + 1]
+            theta, omega = float(path[-1]), 0.0
         if nonfinite:
             warnings.append(f"{nonfinite} non-finite torque samples were replaced by zero")
-        self.theta, self.omega, self.grip_target = theta, omega, r
-        self.prev_meas, self.vel, self.prev_vel, self.acc = prev_meas, vel, prev_vel, acc
-        self.energy = energy
-        time = (self.samples + np.arange(done)) * period
+        q = p.quantum
+        meas = (np.floor(thetas * (1.0 / q) + 0.5) * q if q else thetas) - self.anchor
+        av = p.smoothing(p.velocity_cutoff)
+        raw = np.diff(meas, prepend=self.prev_meas) * p.rate
+        velocity = lfilter([av], [1.0, av - 1.0], raw, zi=[(1.0 - av) * self.vel])[0]
+        energy = self.energy + np.cumsum(taus * np.diff(path))
+        self.theta, self.omega, self.grip_target = theta, omega, grip_target
+        self.prev_meas, self.vel, self.prev_vel, self.acc = estimators
+        self.energy = float(energy[-1]) if energy.size else self.energy
+        time = (self.samples + np.arange(done)) * p.period
         self.samples += done
-        return Telemetry(
-            rate,
-            time,
-            np.array(ang[:done]),
-            np.array(vels[:done]),
-            np.array(taus[:done]),
-            np.array(ens[:done]),
-            np.array(sat[:done], dtype=bool),
-            {},
-            tuple(flags),
-            tuple(warnings),
-        )
+        saturated = np.abs(taus) >= p.max_torque
+        return Telemetry(p.rate, time, meas, velocity, taus, energy, saturated, {},
+                         tuple(flags), tuple(warnings))  # fmt: skip
 
 
 def local_stiffness(table: PositionTable, where: np.ndarray) -> np.ndarray:

@@ -1,0 +1,170 @@
+"""`haptic-timeline play PROJECT`: feel a project on a device, with a summary, CSV and plot."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from timeline.devices import Hand, Telemetry, open_device
+from timeline.errors import HapticTimelineError
+from timeline.kinds import track_kind
+from timeline.playback import Playback, prepare
+from timeline.projectfile import load
+from timeline.quality import DEFAULT_QUALITY, PRESETS
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("play", help="play a project on a device (the simulated knob by default)")
+    p.add_argument("project", help="a .htl project file")
+    p.add_argument("--device", default="sim", help="device plugin: sim (default), usb, audio")
+    p.add_argument(
+        "--hand", default="hold", help="hold (default), free, turn:DEG_PER_S or push:MNM"
+    )
+    p.add_argument("--duration", type=float, help="seconds to play (default: the project's)")
+    p.add_argument(
+        "--origin", type=float, help="position projects: angle (deg) where the knob starts"
+    )
+    p.add_argument("-o", "--output", help="write telemetry to this .csv")
+    p.add_argument("--plot", help="write a plot of layers, angle and torque to this .png")
+    p.add_argument("--quality", default=DEFAULT_QUALITY, choices=list(PRESETS))
+    p.set_defaults(func=run)
+
+
+class _Progress:
+    """Progress on stderr: a rewritten line on a terminal, a few lines otherwise."""
+
+    def __init__(self) -> None:
+        self.tty = sys.stderr.isatty()
+        self.next_report = 0.0
+
+    def __call__(self, played: float, total: float | None) -> None:
+        fraction = played / total if total else None
+        if self.tty:
+            text = f"{played:7.2f} s" + (f" / {total:.2f} s" if total else "")
+            print(f"\rplaying {text}", end="", file=sys.stderr, flush=True)
+        elif fraction is not None and fraction >= self.next_report:
+            print(f"playing {100 * min(fraction, 1.0):3.0f}%", file=sys.stderr, flush=True)
+            self.next_report = math.floor(fraction * 4 + 1) / 4
+
+    def done(self) -> None:
+        if self.tty:
+            print(file=sys.stderr)
+
+
+def run(args: argparse.Namespace) -> int:
+    project = load(args.project)
+    hand = Hand.parse(args.hand)
+    if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
+        raise HapticTimelineError(
+            f"--duration must be a positive number of seconds, not {args.duration}"
+        )
+    origin = None if args.origin is None else math.radians(args.origin)
+    progress = _Progress()
+    with open_device(args.device) as device:
+        playback = prepare(project, device.info, args.duration, hand, args.quality, origin)
+        telemetry = device.play(playback.program, hand, progress)
+    progress.done()
+    print(f"{Path(args.project).name} on {device.info.name} with hand {hand}")
+    for line in telemetry.summary():
+        print(f"  {line}")
+    if args.output:
+        telemetry.write_csv(args.output, playback.layer_names)
+        print(f"telemetry -> {args.output}", file=sys.stderr)
+    if args.plot:
+        title = f"{Path(args.project).stem} on {device.info.name}, hand {hand}"
+        plot_telemetry(telemetry, playback, args.plot, title, device.info.max_output)
+        print(f"plot -> {args.plot}", file=sys.stderr)
+    return 0
+
+
+def _layer_axis(ax, t: np.ndarray, values: np.ndarray, kind_id: str) -> None:
+    try:
+        kind = track_kind(kind_id.split("+")[0])
+        scale, unit, colour, label = kind.display_scale, kind.display_unit, kind.colour, kind.label
+    except HapticTimelineError:
+        scale, unit, colour, label = 1.0, "", "grey", kind_id
+    ax.plot(t, values * scale, color=colour, lw=1.0)
+    ax.set_ylabel(f"{label}\n[{unit}]")
+
+
+def plot_telemetry(
+    telemetry: Telemetry, playback: Playback, path: str, title: str, max_torque: float
+) -> None:
+    """Write a PNG: each layer, the angle and the torque over time (position mode: and vs angle)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib import pyplot as plt
+
+    t = telemetry.time
+    layers = [(k, v) for k, v in playback.layer_names.items() if k in telemetry.layers]
+    origin = getattr(playback.program, "origin", None)
+    rows = len(layers) + 3 + (origin is not None)
+    heights = [1.0] * (len(layers) + 3) + ([2.2] if origin is not None else [])
+    fig, axes = plt.subplots(
+        rows, 1, figsize=(10, 1.7 * sum(heights) + 0.8), height_ratios=heights, squeeze=False
+    )
+    axes = axes[:, 0]
+    for ax, (key, kind_id) in zip(axes, layers, strict=False):
+        _layer_axis(ax, t, telemetry.layers[key], kind_id)
+    ax_theta, ax_tau, ax_energy = axes[len(layers) : len(layers) + 3]
+    shown = np.degrees(telemetry.angle + (origin or 0.0))
+    ax_theta.plot(t, shown, color="black", lw=1.0)
+    ax_theta.set_ylabel("angle\n[deg]" + ("" if origin is None else " (table)"))
+    ax_tau.plot(t, telemetry.torque * 1e3, color="#c0392b", lw=1.0)
+    for level in (max_torque, -max_torque):
+        ax_tau.axhline(level * 1e3, color="grey", ls="--", lw=0.8)
+    ax_tau.set_ylabel("torque\n[mNm]")
+    _shade(ax_tau, t, telemetry.saturated, "orange", "saturated")
+    for flag in telemetry.flags:
+        mask = np.isin(t, flag.times)
+        _shade(ax_tau, t, mask, "red", f"flag: {flag.kind}")
+    if ax_tau.get_legend_handles_labels()[0]:
+        ax_tau.legend(loc="upper right", fontsize=8)
+    ax_energy.plot(t, telemetry.energy * 1e3, color="#34495e", lw=1.0)
+    ax_energy.axhline(0.0, color="grey", lw=0.5)
+    ax_energy.set_ylabel("energy by\ndevice [mJ]")
+    time_axes = axes[: len(layers) + 3]
+    for ax in time_axes:
+        ax.grid(True, alpha=0.3)
+        ax.sharex(time_axes[0])
+    for ax in time_axes[:-1]:
+        ax.tick_params(labelbottom=False)
+    time_axes[-1].set_xlabel("time [s]")
+    if origin is not None:
+        _feel_map(axes[-1], telemetry, playback)
+    fig.suptitle(title + "\n" + "; ".join(telemetry.summary()[1:4]), fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _shade(ax, t: np.ndarray, mask: np.ndarray, colour: str, label: str) -> None:
+    """Shade the time spans where mask is True."""
+    if not mask.any():
+        return
+    edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
+    starts, stops = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1
+    dt = 1.0 / (len(t) / (t[-1] - t[0])) if len(t) > 1 else 0.0
+    for n, (a, b) in enumerate(zip(starts, stops, strict=True)):
+        ax.axvspan(t[a], t[b] + dt, color=colour, alpha=0.25, label=None if n else label, lw=0)
+
+
+def _feel_map(ax, telemetry: Telemetry, playback: Playback) -> None:
+    """Position mode: the torque table over angle, with the torque felt along the knob's path."""
+    program = playback.program
+    table = program.table
+    ax.plot(np.degrees(table.angles()), table.torque * 1e3, color="#f18f01", lw=1.2,
+            label="torque table T(angle)")  # fmt: skip
+    ax.plot(np.degrees(program.origin + telemetry.angle), telemetry.torque * 1e3, color="#c0392b",
+            lw=0.8, alpha=0.8, label="torque applied along the path")  # fmt: skip
+    ax.axhline(0.0, color="grey", lw=0.5)
+    ax.axvline(np.degrees(program.origin), color="black", ls=":", lw=0.8, label="start")
+    ax.set_xlabel("angle [deg]")
+    ax.set_ylabel("torque\n[mNm]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
