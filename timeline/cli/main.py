@@ -12,6 +12,8 @@ from timeline.errors import HapticTimelineError
 VERB_MODULES = [
     "timeline.cli.render_cmd",
     "timeline.cli.info_cmd",
+    "timeline.cli.play_cmd",
+    "timeline.cli.devices_cmd",
     "timeline.cli.import_cmd",
     "timeline.cli.export_cmd",
 ]
