@@ -46,8 +46,9 @@ class Placement:
 
 @dataclass(frozen=True)
 class TrackInfo:
-    """Settings of a track in an imported design (by its name in the file)."""
+    """Settings of a track in an imported design; `key` is the placements' `track`."""
 
+    key: str
     name: str
     kind: str
     gain: float = 1.0

@@ -91,7 +91,7 @@ def place(
     gain: float = 1.0,
 ) -> tuple[Project, list[str]]:
     """Add an import's tiles to the palette and its placements as clips (see import_file)."""
-    infos = {t.name: t for t in imported.tracks}
+    infos = {t.key: t for t in imported.tracks}
     targets: dict[tuple[str, str], str] = {}  # (kind, source track name) -> project track id
     tile_ids: dict[int, str] = {}  # id(tile) -> project tile id: a tile placed twice is added once
     clip_ids: list[str] = []

@@ -1,0 +1,220 @@
+"""OpenTimelineIO (.otio): each track and clip with its timing, beside video and audio.
+
+Each project track becomes one OTIO Audio track, or several ("lanes") when its clips overlap,
+since OTIO tracks play clips one after another. Clip timing is written at the project's rate
+for editors; our exact clip fields, track settings and tiles (sampled data base64-encoded) are
+kept in `metadata["haptic_timeline"]`, which is what reading uses. Only files this program
+wrote can be read back: other OTIO files carry no haptic tiles.
+"""
+
+from __future__ import annotations
+
+import base64
+from dataclasses import asdict, fields
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import opentimelineio as otio
+
+from timeline.errors import HapticTimelineError
+from timeline.formats import FormatError, Imported, Placement, Progress, TrackInfo
+from timeline.model import Clip, Fade, Project, Track
+from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
+
+KEY = "haptic_timeline"
+VERSION = 1
+_CLIP_FIELDS = [f.name for f in fields(Clip) if f.name not in ("id", "tile_id", "start")]
+
+
+def encode_tile(tile: Tile) -> dict[str, Any]:
+    """A tile as JSON-safe data (sampled samples exactly, as base64 little-endian float64)."""
+    if isinstance(tile, SampledTile):
+        raw = np.ascontiguousarray(tile.data, dtype="<f8").tobytes()
+        return {
+            "type": "sampled",
+            "rate": tile.rate,
+            "name": tile.name,
+            "source": tile.source,
+            "samples": base64.b64encode(raw).decode("ascii"),
+        }
+    if isinstance(tile, SplineTile):
+        return {
+            "type": "spline",
+            "points": [list(p) for p in tile.points],
+            "duration": tile.duration,
+            "method": tile.method,
+            "name": tile.name,
+        }
+    return {
+        "type": "generator",
+        "generator": tile.generator,
+        "duration": tile.duration,
+        "params": dict(tile.params),
+        "name": tile.name,
+    }
+
+
+def decode_tile(data: Any) -> Tile:
+    """The tile encoded by encode_tile, or a FormatError."""
+    try:
+        kind = data["type"]
+        if kind == "sampled":
+            raw = base64.b64decode(data["samples"], validate=True)
+            samples = np.frombuffer(raw, dtype="<f8")
+            return SampledTile(samples, data["rate"], data["name"], data.get("source", ""))
+        if kind == "spline":
+            points = tuple((float(t), float(v)) for t, v in data["points"])
+            return SplineTile(points, data["duration"], data["method"], data["name"])
+        if kind == "generator":
+            params = tuple((str(k), float(v)) for k, v in dict(data["params"]).items())
+            return GeneratorTile(data["generator"], data["duration"], params, data["name"])
+    except HapticTimelineError as exc:
+        raise FormatError(f"a tile in the OTIO file is invalid: {exc}") from None
+    except (KeyError, TypeError, ValueError, AttributeError) as exc:
+        raise FormatError(f"a tile in the OTIO file is malformed ({type(exc).__name__})") from None
+    raise FormatError(f"a tile in the OTIO file has an unknown type {kind!r}")
+
+
+def _lanes(track: Track) -> list[list[Clip]]:
+    """Clips split into lanes in which no two overlap (first fit, by start)."""
+    lanes: list[list[Clip]] = []
+    for clip in sorted(track.clips, key=lambda c: c.start):
+        for lane in lanes:
+            if lane[-1].end <= clip.start:
+                lane.append(clip)
+                break
+        else:
+            lanes.append([clip])
+    return lanes or [[]]
+
+
+def _rt(seconds: float, rate: float) -> otio.opentime.RationalTime:
+    return otio.opentime.RationalTime(seconds * rate, rate)
+
+
+def _clip_fields(clip: Clip) -> dict[str, Any]:
+    out = {name: getattr(clip, name) for name in _CLIP_FIELDS}
+    out["fade_in"], out["fade_out"] = asdict(clip.fade_in), asdict(clip.fade_out)
+    return out
+
+
+class OtioFormat:
+    """OpenTimelineIO: writes every track and clip; reads back files this program wrote."""
+
+    name = "otio"
+    extensions = (".otio",)
+    reads = "design"
+    writes = "project"
+    options = ()
+
+    def write(self, source: Project, path: Path, **options: Any) -> None:
+        """Write the project's tracks as OTIO tracks, with our fields in metadata."""
+        rate = source.rate
+        timeline = otio.schema.Timeline(name=Path(path).stem)
+        used = {c.tile_id for t in source.tracks for c in t.clips}
+        timeline.metadata[KEY] = {
+            "version": VERSION,
+            "axis": source.axis,
+            "rate": rate,
+            "tiles": {tid: encode_tile(source.tile(tid)) for tid in sorted(used)},
+        }
+        for track in source.tracks:
+            for lane_index, lane in enumerate(_lanes(track)):
+                out = otio.schema.Track(name=track.name, kind=otio.schema.TrackKind.Audio)
+                out.metadata[KEY] = {
+                    "track": track.id,
+                    "lane": lane_index,
+                    "kind": track.kind,
+                    "name": track.name,
+                    "gain": track.gain,
+                    "mute": track.mute,
+                    "solo": track.solo,
+                }
+                cursor = 0.0
+                for clip in lane:
+                    if clip.start > cursor:
+                        out.append(otio.schema.Gap(duration=_rt(clip.start - cursor, rate)))
+                    item = otio.schema.Clip(
+                        name=source.tile(clip.tile_id).name,
+                        media_reference=otio.schema.MissingReference(),
+                        source_range=otio.opentime.TimeRange(
+                            _rt(clip.source_in, rate), _rt(clip.duration, rate)
+                        ),
+                    )
+                    item.metadata[KEY] = {
+                        "tile": clip.tile_id,
+                        "start": clip.start,
+                        **_clip_fields(clip),
+                    }
+                    out.append(item)
+                    cursor = max(cursor, clip.start) + clip.duration
+                timeline.tracks.append(out)
+        otio.adapters.write_to_file(timeline, str(path), adapter_name="otio_json")
+
+    def read(
+        self, path: Path, *, progress: Progress | None = None, **options: Any
+    ) -> Imported | None:
+        """Read back the tracks and clips of an OTIO file this program wrote."""
+        path = Path(path)
+        try:
+            timeline = otio.adapters.read_from_file(str(path), adapter_name="otio_json")
+        except Exception as exc:  # OTIO's parser raises many types on malformed input
+            detail = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
+            raise FormatError(f"{path.name} is not a readable OTIO file ({detail})") from None
+        if not isinstance(timeline, otio.schema.Timeline):
+            raise FormatError(f"{path.name} holds no OTIO timeline")
+        meta = timeline.metadata.get(KEY)
+        if meta is None or "tiles" not in meta:
+            raise FormatError(f"{path.name} was not written by haptic-timeline (no haptic tiles)")
+        tiles = {str(k): decode_tile(v) for k, v in dict(meta["tiles"]).items()}
+        placements: list[Placement] = []
+        infos: dict[str, TrackInfo] = {}
+        for track in timeline.tracks:
+            tmeta = track.metadata.get(KEY)
+            if tmeta is None:
+                continue
+            track_key, info = _track_info(tmeta, path.name)
+            infos.setdefault(track_key, info)
+            for item in track:
+                cmeta = item.metadata.get(KEY) if isinstance(item, otio.schema.Clip) else None
+                if cmeta is not None:
+                    placements.append(_placement(cmeta, tiles, track_key, info.kind, path.name))
+        if not placements:
+            raise FormatError(f"{path.name} holds no haptic clips")
+        if progress is not None:
+            progress(1.0)
+        return Imported(tuple(placements), tuple(infos.values()))
+
+
+def _track_info(meta: Any, name: str) -> tuple[str, TrackInfo]:
+    try:
+        key = str(meta["track"])
+        info = TrackInfo(
+            key,
+            str(meta["name"]),
+            str(meta["kind"]),
+            float(meta["gain"]),
+            bool(meta["mute"]),
+            bool(meta["solo"]),
+        )
+        return key, info
+    except (KeyError, TypeError, ValueError):
+        raise FormatError(f"a track's haptic settings in {name} are malformed") from None
+
+
+def _placement(meta: Any, tiles: dict[str, Tile], track: str, kind: str, name: str) -> Placement:
+    try:
+        tile = tiles[str(meta["tile"])]
+        clip = {k: meta[k] for k in _CLIP_FIELDS}
+        clip["fade_in"] = Fade(**dict(clip["fade_in"]))
+        clip["fade_out"] = Fade(**dict(clip["fade_out"]))
+        clip["reverse"] = bool(clip["reverse"])
+        return Placement(tile, float(meta["start"]), kind, track, clip)
+    except HapticTimelineError as exc:
+        raise FormatError(f"a clip in {name} is invalid: {exc}") from None
+    except (KeyError, TypeError, ValueError):
+        raise FormatError(f"a clip's haptic settings in {name} are malformed") from None
+
+
+FORMAT = OtioFormat()
