@@ -165,8 +165,27 @@ def decode_info(data: bytes) -> InfoPayload:
     data = bytes(data)
     if len(data) != INFO_SIZE:
         raise ProtocolError(f"device info is {len(data)} bytes, expected {INFO_SIZE}")
-    (magic, version, kind, major, minor, patch, rate, tmax, kmax, bmax, mmax, res, cap, max_block,
-     report, channels, _, watchdog, ramp) = _INFO.unpack(data)  # fmt: skip
+    (
+        magic,
+        version,
+        kind,
+        major,
+        minor,
+        patch,
+        rate,
+        tmax,
+        kmax,
+        bmax,
+        mmax,
+        res,
+        cap,
+        max_block,
+        report,
+        channels,
+        _,
+        watchdog,
+        ramp,
+    ) = _INFO.unpack(data)
     if magic != _INFO_MAGIC:
         raise ProtocolError("device info does not start with the protocol's magic bytes")
     if version != PROTOCOL_VERSION:
@@ -180,8 +199,23 @@ def decode_info(data: bytes) -> InfoPayload:
         raise ProtocolError(f"device info has an invalid channel mask {channels:#x}")
     if max_block <= 0 or report <= 0 or cap < max_block:
         raise ProtocolError("device info has an invalid block, report or buffer size")
-    return InfoPayload(kind, rate, tmax, kmax, bmax, mmax, res, cap, max_block, report, channels,
-                       watchdog, ramp, (major, minor, patch), version)  # fmt: skip
+    return InfoPayload(
+        kind,
+        rate,
+        tmax,
+        kmax,
+        bmax,
+        mmax,
+        res,
+        cap,
+        max_block,
+        report,
+        channels,
+        watchdog,
+        ramp,
+        (major, minor, patch),
+        version,
+    )
 
 
 def encode_limits(max_torque: float, watchdog_ms: int) -> bytes:
@@ -297,8 +331,9 @@ def decode_report(data: bytes) -> Report:
     data = bytes(data)
     if len(data) < REPORT_HEADER_SIZE:
         raise ProtocolError(f"a telemetry report of {len(data)} bytes is shorter than its header")
-    (magic, version, state, seq, first, n, flags, fill, underruns, overruns,
-     last_seq) = _REPORT_HEADER.unpack_from(data)  # fmt: skip
+    (magic, version, state, seq, first, n, flags, fill, underruns, overruns, last_seq) = (
+        _REPORT_HEADER.unpack_from(data)
+    )
     if magic != _REPORT_MAGIC:
         raise ProtocolError("a telemetry report does not start with the protocol's magic bytes")
     if version != PROTOCOL_VERSION:

@@ -1,0 +1,226 @@
+"""An emulated haptic-timeline USB device that plugs into pyusb as a custom backend.
+
+pyusb's own code (descriptor parsing, configuration, claiming, transfers) runs unchanged on top
+of it: `usb.core.find(backend=EmulatedBackend(EmulatedDevice()), ...)`. Behind the endpoints the
+firmware (device.usb.firmware) runs the `sim` knob's physics. Fault injection (FaultPlan) makes
+a transfer time out, an endpoint stall, the device vanish, or the host late enough to underrun.
+"""
+
+from __future__ import annotations
+
+import array
+import errno
+from dataclasses import dataclass
+
+import usb.backend
+import usb.core
+import usb.util
+
+from device.usb import descriptors as desc
+from device.usb import protocol as p
+from device.usb.firmware import EmulatedKnob
+from timeline.devices import Hand
+
+_GET_DESCRIPTOR = 0x06
+_NO_DEVICE = ("No such device (it may have been disconnected)", -4, errno.ENODEV)
+_PIPE = ("Pipe error", -9, errno.EPIPE)
+_TIMEOUT = ("Operation timed out", -7, errno.ETIMEDOUT)
+_OVERFLOW = ("Overflow", -8, errno.EOVERFLOW)
+
+
+@dataclass(frozen=True)
+class FaultPlan:
+    """Faults to inject, by index of bulk transfer (0 = the first OUT or IN transfer).
+
+    unplug_after: from this transfer on the device is gone (every request fails with ENODEV).
+    timeout_at: this transfer times out (nothing is delivered), once.
+    stall_at: this transfer's endpoint halts (EPIPE) until the host clears it.
+    late_at: before answering this telemetry read, the device plays out its queue and one more
+        report period, as if the host had been descheduled that long (an underrun).
+    """
+
+    unplug_after: int | None = None
+    timeout_at: int | None = None
+    stall_at: int | None = None
+    late_at: int | None = None
+
+
+class EmulatedDevice:
+    """One device on the emulated bus: its firmware, identity, faults and transport state."""
+
+    def __init__(
+        self,
+        knob: EmulatedKnob | None = None,
+        identity: desc.Identity | None = None,
+        faults: FaultPlan | None = None,
+        record: bool = False,
+    ) -> None:
+        self.knob = knob or EmulatedKnob()
+        self.identity = identity or desc.Identity()
+        self.faults = faults or FaultPlan()
+        self.record = record
+        self.wire_out: list[bytes] = []  # every OUT transfer's bytes, when recording
+        self.transfers = 0
+        self.unplugged = False
+        self.halted: set[int] = set()
+        self.configuration = 0
+        self.device_bytes = desc.device_descriptor(self.identity)
+        self.config_bytes = desc.configuration_descriptor(self.identity)
+
+    def check_present(self) -> None:
+        if self.unplugged:
+            raise usb.core.USBError(*_NO_DEVICE)
+
+    def next_transfer(self, ep: int) -> int:
+        """Count a bulk transfer and raise the fault planned for it, if any."""
+        self.check_present()
+        i = self.transfers
+        self.transfers += 1
+        f = self.faults
+        if f.unplug_after is not None and i >= f.unplug_after:
+            self.unplugged = True
+            raise usb.core.USBError(*_NO_DEVICE)
+        if i == f.stall_at:
+            self.halted.add(ep)
+        if ep in self.halted:
+            raise usb.core.USBError(*_PIPE)
+        if i == f.timeout_at:
+            raise usb.core.USBTimeoutError(*_TIMEOUT)
+        return i
+
+
+class EmulatedBackend(usb.backend.IBackend):
+    """A pyusb backend whose bus holds the given emulated devices."""
+
+    def __init__(self, *devices: EmulatedDevice) -> None:
+        super().__init__()
+        self.devices = list(devices)
+
+    def set_hand(self, hand: Hand) -> None:
+        """What the (emulated) user's hand does from the next START on."""
+        for dev in self.devices:
+            dev.knob.hand = hand
+
+    # --- enumeration and descriptors -----------------------------------------------------------
+    def enumerate_devices(self) -> list[EmulatedDevice]:
+        return [d for d in self.devices if not d.unplugged]
+
+    def get_parent(self, dev: EmulatedDevice) -> None:
+        return None
+
+    def get_device_descriptor(self, dev: EmulatedDevice) -> object:
+        address = self.devices.index(dev) + 1
+        return desc.parse_device(dev.device_bytes, address, 1, dev.identity.high_speed)
+
+    def get_configuration_descriptor(self, dev: EmulatedDevice, config: int) -> object:
+        if config != 0:
+            raise IndexError(config)
+        return desc.parse_configuration(dev.config_bytes)
+
+    def get_interface_descriptor(self, dev: EmulatedDevice, intf: int, alt: int, config: int):
+        if (intf, alt, config) != (0, 0, 0):
+            raise IndexError((intf, alt, config))
+        return desc.parse_interface(dev.config_bytes)
+
+    def get_endpoint_descriptor(self, dev: EmulatedDevice, ep: int, intf: int, alt: int, config):
+        if (intf, alt, config) != (0, 0, 0):
+            raise IndexError((intf, alt, config))
+        return desc.parse_endpoint(dev.config_bytes, ep)
+
+    # --- handles ---------------------------------------------------------------------------------
+    def open_device(self, dev: EmulatedDevice) -> EmulatedDevice:
+        dev.check_present()
+        return dev
+
+    def close_device(self, dev_handle: EmulatedDevice) -> None:
+        return None
+
+    def set_configuration(self, dev_handle: EmulatedDevice, config_value: int) -> None:
+        dev_handle.check_present()
+        if config_value not in (0, 1):
+            raise usb.core.USBError(*_PIPE)
+        dev_handle.configuration = config_value
+
+    def get_configuration(self, dev_handle: EmulatedDevice) -> int:
+        dev_handle.check_present()
+        return dev_handle.configuration
+
+    def set_interface_altsetting(self, dev_handle: EmulatedDevice, intf: int, alt: int) -> None:
+        dev_handle.check_present()
+        if (intf, alt) != (0, 0):
+            raise usb.core.USBError(*_PIPE)
+
+    def claim_interface(self, dev_handle: EmulatedDevice, intf: int) -> None:
+        dev_handle.check_present()
+        if intf != p.INTERFACE_NUMBER:
+            raise usb.core.USBError("Entity not found", -5, errno.ENOENT)
+
+    def release_interface(self, dev_handle: EmulatedDevice, intf: int) -> None:
+        dev_handle.check_present()
+
+    def is_kernel_driver_active(self, dev_handle: EmulatedDevice, intf: int) -> bool:
+        return False
+
+    def clear_halt(self, dev_handle: EmulatedDevice, ep: int) -> None:
+        dev_handle.check_present()
+        dev_handle.halted.discard(ep)
+
+    # --- transfers -------------------------------------------------------------------------------
+    def bulk_write(self, dev_handle: EmulatedDevice, ep: int, intf: int, data, timeout: int) -> int:
+        dev_handle.next_transfer(ep)
+        if ep != p.EP_OUT:
+            raise usb.core.USBError(*_PIPE)
+        payload = bytes(data)
+        if dev_handle.record:
+            dev_handle.wire_out.append(payload)
+        dev_handle.knob.receive(payload)
+        return len(payload)
+
+    def bulk_read(self, dev_handle: EmulatedDevice, ep: int, intf: int, buff, timeout: int) -> int:
+        i = dev_handle.next_transfer(ep)
+        if ep != p.EP_IN:
+            raise usb.core.USBError(*_PIPE)
+        if i == dev_handle.faults.late_at:
+            dev_handle.knob.starve()
+        payload = dev_handle.knob.send()
+        if len(payload) > len(buff) * buff.itemsize:
+            raise usb.core.USBError(*_OVERFLOW)
+        buff[: len(payload)] = array.array("B", payload)
+        return len(payload)
+
+    def ctrl_transfer(
+        self,
+        dev_handle: EmulatedDevice,
+        bmRequestType: int,
+        bRequest: int,
+        wValue: int,
+        wIndex: int,
+        data,
+        timeout: int,
+    ) -> int:
+        dev_handle.check_present()
+        try:
+            if bmRequestType == 0x80 and bRequest == _GET_DESCRIPTOR:
+                answer = self._descriptor(dev_handle, wValue >> 8, wValue & 0xFF)
+            elif bmRequestType == p.REQUEST_TYPE_IN and wIndex == p.INTERFACE_NUMBER:
+                answer = dev_handle.knob.control_in(bRequest, len(data))
+            elif bmRequestType == p.REQUEST_TYPE_OUT and wIndex == p.INTERFACE_NUMBER:
+                dev_handle.knob.control_out(bRequest, wValue, bytes(data))
+                return len(data)
+            else:
+                raise p.ProtocolError(f"unsupported request {bmRequestType:#x}/{bRequest:#x}")
+        except (p.ProtocolError, IndexError):
+            raise usb.core.USBError(*_PIPE) from None
+        n = min(len(answer), len(data))
+        data[:n] = array.array("B", answer[:n])
+        return n
+
+    @staticmethod
+    def _descriptor(dev: EmulatedDevice, kind: int, index: int) -> bytes:
+        if kind == desc.DESC_DEVICE:
+            return dev.device_bytes
+        if kind == desc.DESC_CONFIGURATION and index == 0:
+            return dev.config_bytes
+        if kind == desc.DESC_STRING:
+            return desc.string_descriptor(dev.identity, index)
+        raise IndexError(kind)

@@ -1,0 +1,183 @@
+"""Streaming a program to an open device: re-blocking, safety, pacing and telemetry.
+
+The host keeps the device's queue at most `lead` samples ahead of what it has played, as the
+device reports it (docs/usb-protocol.md, section 4), and checks every telemetry report.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Iterable, Iterator
+
+import numpy as np
+
+from device.usb import protocol as p
+from device.usb.errors import DeviceFault, DeviceUnderrun, UsbDeviceError
+from device.usb.link import Link
+from timeline.devices import CoefficientBlock, Progress, Telemetry
+
+
+class Chunker:
+    """Cuts a stream of CoefficientBlocks into (n, channels) arrays, knowing which is last."""
+
+    def __init__(self, blocks: Iterable[CoefficientBlock], names: tuple[str, ...]) -> None:
+        self._blocks: Iterator[CoefficientBlock] = iter(blocks)
+        self._names = names
+        self._parts: deque[np.ndarray] = deque()
+        self._have = 0
+        self._done = False
+        self.dropped: set[str] = set()  # layers with values that the stream does not carry
+
+    def _pull(self) -> None:
+        block = next(self._blocks, None)
+        if block is None:
+            self._done = True
+            return
+        for name in ("k", "b", "m"):
+            values = getattr(block, name)
+            if name not in self._names and values is not None and np.any(values):
+                self.dropped.add(name)
+        columns = [getattr(block, name) for name in self._names]
+        n = len(block)
+        rows = np.column_stack([np.zeros(n) if c is None else c for c in columns])
+        if n:
+            self._parts.append(rows)
+            self._have += n
+
+    def available(self, n: int) -> int:
+        """How many of the next n samples exist (reading ahead one sample to spot the end)."""
+        while self._have <= n and not self._done:
+            self._pull()
+        return min(n, self._have)
+
+    def take(self, n: int) -> tuple[np.ndarray, bool]:
+        """Up to n samples, and whether they are the stream's last."""
+        self.available(n)
+        out: list[np.ndarray] = []
+        need = n
+        while need and self._parts:
+            head = self._parts.popleft()
+            out.append(head[:need])
+            if len(head) > need:
+                self._parts.appendleft(head[need:])
+            need -= len(out[-1])
+        self._have -= n - need
+        rows = np.concatenate(out) if out else np.zeros((0, len(self._names)))
+        return rows, self._done and not self._have
+
+
+class Stream:
+    """One play: START, blocks paced by telemetry, END, and the telemetry it gathered."""
+
+    def __init__(
+        self, link: Link, mask: int, torque_limit: float, lead_s: float, block_s: float
+    ) -> None:
+        info = link.info
+        self.link = link
+        self.mask = mask
+        self.rate = info.rate_hz
+        self.limits = info.channel_limits(mask)
+        self.limits[0] = np.float32(min(torque_limit, info.max_torque))
+        self.block_n = max(1, min(round(block_s * self.rate), info.max_block))
+        lead = max(round(lead_s * self.rate), 2 * self.block_n)
+        self.lead_n = min(lead, info.buffer_capacity)
+        self.zeroed = 0
+        self.clamped = 0
+        self._sent: list[np.ndarray] = []
+        self._received: list[np.ndarray] = []
+        self._n_sent = 0
+        self._n_received = 0
+
+    def run(
+        self, chunker: Chunker, progress: Progress | None = None, total: float | None = None
+    ) -> None:
+        """Stream everything the chunker yields and read telemetry until all of it is played."""
+        if not chunker.available(1):
+            return  # an empty program: nothing to play
+        seq, fill, since, end = 0, 0, 0, False
+        self.link.start(self.mask)
+        while not end or self._n_received < self._n_sent:
+            while not end and fill + since + self.block_n <= self.lead_n:
+                n = p.block_samples(chunker.available(self.block_n), self.mask, self.block_n)
+                rows, end = chunker.take(n)
+                self.link.write_block(p.Block(seq, self.mask, self._safe(rows), end))
+                seq += 1
+                since += len(rows)
+            report = self.link.read_report()
+            self._check(report, end)
+            fill, since = report.buffer_fill, 0
+            if progress:
+                progress(self._n_received / self.rate, total)
+
+    def _safe(self, rows: np.ndarray) -> np.ndarray:
+        safe, zeroed, clamped = p.make_safe(rows, self.limits)
+        self.zeroed += zeroed
+        self.clamped += clamped
+        wire = safe.astype(np.float32)
+        self._sent.append(wire)
+        self._n_sent += len(wire)
+        return wire
+
+    def _check(self, report: p.Report, end: bool) -> None:
+        if report.first_sample != self._n_received:
+            raise p.ProtocolError(
+                f"telemetry jumped from sample {self._n_received} to {report.first_sample}"
+            )
+        self._received.append(report.samples)
+        self._n_received += len(report.samples)
+        at = f"{self._n_received / self.rate:.3f} s"
+        if report.flags & p.FLAG_UNDERRUN or report.underruns:
+            raise DeviceUnderrun(
+                f"the USB haptic device ran out of samples at {at} ({report.underruns} samples "
+                "played from an empty queue) because the host fell behind, so playback stopped"
+            )
+        if report.flags & p.FLAG_WATCHDOG:
+            raise DeviceFault(
+                f"the USB haptic device's watchdog ramped the torque to zero at {at} because no "
+                "block arrived in time"
+            )
+        faults = report.flags & p.FAULT_FLAGS
+        if faults or report.overruns:
+            names = ", ".join(p.flag_names(faults | (p.FLAG_OVERRUN if report.overruns else 0)))
+            raise DeviceFault(f"the USB haptic device reported {names} at {at}; playback stopped")
+        if report.state == p.STATE_IDLE and not end:
+            raise DeviceFault(f"the USB haptic device stopped by itself at {at}")
+
+    def telemetry(self) -> Telemetry:
+        """What the device reported for the samples sent, with the layers as sent."""
+        n = self._n_sent
+        rows = np.concatenate(self._received)[:n] if self._received else np.zeros((0, 3))
+        sent = np.concatenate(self._sent) if self._sent else np.zeros((0, len(self.limits)))
+        if len(rows) < n:
+            raise UsbDeviceError(f"the USB haptic device reported {len(rows)} of {n} samples")
+        angle, velocity, torque = (rows[:, i].astype(np.float64) for i in range(3))
+        # Work done on the knob, from the encoder: torque held over each period times the step.
+        steps = np.diff(angle, append=angle[-1] if n else angle)
+        energy = np.cumsum(torque * steps)
+        layers = {
+            name: sent[:, i].astype(np.float64) for i, name in enumerate(p.channel_names(self.mask))
+        }
+        return Telemetry(
+            float(self.rate),
+            np.arange(n) * (1.0 / self.rate),
+            angle,
+            velocity,
+            torque,
+            energy,
+            np.abs(torque) >= self.limits[0],
+            layers,
+            (),
+            tuple(self.warnings()),
+        )
+
+    def warnings(self) -> list[str]:
+        """Sentences about values the host had to change before sending them."""
+        out = []
+        if self.zeroed:
+            out.append(f"{self.zeroed} samples held NaN or infinite values and were sent as zero")
+        if self.clamped:
+            out.append(
+                f"{self.clamped} values were clamped to the device's limits "
+                f"(max torque {self.limits[0] * 1e3:.4g} mNm)"
+            )
+        return out
