@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterable, Sequence
 from itertools import chain
 from typing import Any
@@ -23,6 +24,8 @@ from timeline.devices import (
     Telemetry,
 )
 
+EMULATE_ENV = "HAPTIC_TIMELINE_USB_EMULATE"
+
 
 def _shown(x: float) -> float:
     """A float32 from the wire as the decimal it was written as (0.18, not 0.18000000715)."""
@@ -33,7 +36,8 @@ class UsbKnob(Device):
     """A USB haptic device speaking docs/usb-protocol.md, found by VID:PID.
 
     `backend` is a pyusb backend (default: libusb from libusb-package, else pyusb's choice);
-    `emulate=True` plugs in the emulated device instead, so everything works without hardware.
+    `emulate=True` (or the environment variable HAPTIC_TIMELINE_USB_EMULATE=1) plugs in the
+    emulated device instead, so everything works without hardware.
     `lead` and `block` are the seconds streamed ahead of the device and per transfer;
     `max_torque` (N*m) lowers the device's own limit.
     """
@@ -44,32 +48,32 @@ class UsbKnob(Device):
         pid: int = p.DEFAULT_PID,
         serial: str | None = None,
         backend: Any = None,
-        emulate: bool = False,
+        emulate: bool | None = None,
         lead: float = 0.030,
         block: float = 0.010,
         timeout_ms: int = 1000,
         watchdog_ms: int = 50,
         max_torque: float | None = None,
     ) -> None:
-        if emulate and backend is None:
-            from device.usb.descriptors import Identity
-            from device.usb.emulated import EmulatedBackend, EmulatedDevice
-
-            backend = EmulatedBackend(EmulatedDevice(identity=Identity(vid=vid, pid=pid)))
+        if backend is None and (_emulating() if emulate is None else emulate):
+            backend = _emulated_backend(vid, pid)
         self.vid, self.pid, self.serial = int(vid), int(pid), serial
         self.backend = backend
         self.lead, self.block = float(lead), float(block)
         self.timeout_ms, self.watchdog_ms = int(timeout_ms), int(watchdog_ms)
         self.max_torque = max_torque
         self.link: Link | None = None
+        self._info: DeviceInfo | None = None
 
     @classmethod
     def discover(
         cls, vid: int = p.DEFAULT_VID, pid: int = p.DEFAULT_PID, backend: Any = None
     ) -> list[str]:
         """One line per attached device with this VID:PID; empty when none or without libusb."""
+        if backend is None:
+            backend = _emulated_backend(vid, pid) if _emulating() else default_backend()
         try:
-            found = find_devices(vid, pid, backend or default_backend())
+            found = find_devices(vid, pid, backend)
         except UsbDeviceError:
             return []
         return [_describe(dev) for dev in found]
@@ -87,19 +91,19 @@ class UsbKnob(Device):
 
     @property
     def info(self) -> DeviceInfo:
-        self.open()
-        w = self.link.info
-        kind = p.KINDS[w.kind]
-        name = f"usb {self.vid:04x}:{self.pid:04x}"
-        firmware = ".".join(str(x) for x in w.firmware)
-        return DeviceInfo(
-            name,
-            kind,
-            float(w.rate_hz),
-            _shown(w.max_torque),
-            _shown(w.encoder_resolution),
-            firmware,
-        )
+        """What the device declared when it was opened (opening it if it never was)."""
+        if self._info is None:
+            self.open()
+            w = self.link.info
+            self._info = DeviceInfo(
+                f"usb {self.vid:04x}:{self.pid:04x}",
+                p.KINDS[w.kind],
+                float(w.rate_hz),
+                _shown(w.max_torque),
+                _shown(w.encoder_resolution),
+                ".".join(str(x) for x in w.firmware),
+            )
+        return self._info
 
     def play(
         self,
@@ -124,7 +128,7 @@ class UsbKnob(Device):
         mask = self._mask(first)
         limit = min(self.max_torque or np.inf, link.info.max_torque)
         stream = Stream(link, mask, limit, self.lead, self.block)
-        chunker = Chunker(chain([first] if first else [], rest), p.channel_names(mask))
+        chunker = Chunker(chain([] if first is None else [first], rest), p.channel_names(mask))
         try:
             link.set_limits(float(stream.limits[0]), self.watchdog_ms)
             stream.run(chunker, progress, total)
@@ -148,6 +152,17 @@ class UsbKnob(Device):
                 raise DeviceError("this USB device cannot render a mass layer")
             return p.ALL_CHANNELS
         return p.CH_D | p.CH_K | p.CH_B
+
+
+def _emulating() -> bool:
+    return os.environ.get(EMULATE_ENV, "") not in ("", "0")
+
+
+def _emulated_backend(vid: int, pid: int) -> Any:
+    from device.usb.descriptors import Identity
+    from device.usb.emulated import EmulatedBackend, EmulatedDevice
+
+    return EmulatedBackend(EmulatedDevice(identity=Identity(vid=vid, pid=pid)))
 
 
 def _warn(tel: Telemetry, message: str) -> Telemetry:
