@@ -327,9 +327,9 @@ class Telemetry:
     """What a device reports after playing: per-sample arrays, layers and flags.
 
     angle is rad from the anchor (the angle when playback started), velocity rad/s, torque the
-    N*m the motor applied, energy the cumulative work (J) the motor did on the knob (positive =
-    the device injected energy), saturated True where the torque was clamped. `layers` maps a
-    layer name to the values rendered at each sample.
+    N*m the motor applied, energy the cumulative energy (J) the device put into the knob and
+    hand: motor work minus what its own friction dissipated (positive = active), saturated True
+    where the torque was clamped. `layers` maps a layer name to the values rendered per sample.
     """
 
     rate: float
@@ -358,7 +358,7 @@ class Telemetry:
 
     @property
     def energy_injected(self) -> float:
-        """Net work (J) the device did on the knob over the run; positive means active."""
+        """Net energy (J) the device put into knob and hand over the run; positive = active."""
         return float(self.energy[-1]) if self.energy.size else 0.0
 
     def flag(self, kind: str) -> StabilityFlag | None:

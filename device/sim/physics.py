@@ -204,6 +204,7 @@ class KnobPhysics:
         elapsed = self.samples * period
         thetas = [0.0] * n
         taus = [0.0] * n
+        frs = [0.0] * n
         nonfinite = 0
         for i, d, k, b, m, g in zip(range(n), dl, kl, bl, ml, gl, strict=False):
             meas = ((theta * inv_q + 0.5) // 1.0 * quantum if quantum else theta) - anchor
@@ -239,25 +240,31 @@ class KnobPhysics:
                 fr = coulomb if fr > coulomb else (-coulomb if fr < -coulomb else fr)
                 u += fr
                 free += w2 * fr
+                frs[i] = fr
             thetas[i] = theta
             taus[i] = tau
             theta = t0 * theta + t1 * omega + t2 * u + t3 * r + t4 * speed
             omega = free
             r += speed * period
-        return self._finish(np.array(thetas), np.array(taus), theta, omega, r,
+        return self._finish(np.array(thetas), np.array(taus), np.array(frs), theta, omega, r,
                             (prev_meas, vel, prev_vel, acc), nonfinite)  # fmt: skip
 
     def _finish(
         self,
         thetas: np.ndarray,
         taus: np.ndarray,
+        frictions: np.ndarray,
         theta: float,
         omega: float,
         grip_target: float,
         estimators: tuple[float, float, float, float],
         nonfinite: int,
     ) -> Telemetry:
-        """Turn the loop's record (true angle before each period, torque) into telemetry."""
+        """Turn the loop's record (true angle before each period, torque) into telemetry.
+
+        Energy is what the device (motor with its own viscous and Coulomb friction, Colgate's
+        "device") put into the rotor and hand: motor work minus the friction's dissipation.
+        """
         p = self.params
         path = np.append(thetas, theta)
         speed = np.abs(np.diff(path)) * p.rate
@@ -274,6 +281,7 @@ class KnobPhysics:
             flags.append(StabilityFlag("blow-up", self.failed, np.array([at]), np.array([0.0])))
             warnings.append(self.failed)
             thetas, taus, path = thetas[:done], taus[:done], path[: done + 1]
+            frictions = frictions[:done]
             theta, omega = float(path[-1]), 0.0
         if nonfinite:
             warnings.append(f"{nonfinite} non-finite torque samples were replaced by zero")
@@ -282,7 +290,9 @@ class KnobPhysics:
         av = p.smoothing(p.velocity_cutoff)
         raw = np.diff(meas, prepend=self.prev_meas) * p.rate
         velocity = lfilter([av], [1.0, av - 1.0], raw, zi=[(1.0 - av) * self.vel])[0]
-        energy = self.energy + np.cumsum(taus * np.diff(path))
+        step = np.diff(path)
+        dissipated = p.viscous * step * step * p.rate - frictions * step
+        energy = self.energy + np.cumsum(taus * step - dissipated)
         self.theta, self.omega, self.grip_target = theta, omega, grip_target
         self.prev_meas, self.vel, self.prev_vel, self.acc = estimators
         self.energy = float(energy[-1]) if energy.size else self.energy

@@ -118,7 +118,7 @@ def plot_telemetry(
     ax_tau.plot(t, telemetry.torque * 1e3, color="#c0392b", lw=1.0)
     for level in (max_torque, -max_torque):
         ax_tau.axhline(level * 1e3, color="grey", ls="--", lw=0.8)
-    ax_tau.set_ylabel("torque\n[mNm]")
+    ax_tau.set_ylabel("applied\ntorque [mNm]")
     _shade(ax_tau, t, telemetry.saturated, "orange", "saturated")
     for flag in telemetry.flags:
         mask = np.isin(t, flag.times)
