@@ -2,7 +2,9 @@
 
 Reading: HapticTransient and HapticContinuous events with HapticIntensity/HapticSharpness, the
 continuous events' Attack/Decay/Release envelope, HapticIntensityControl (a multiplier) and
-HapticSharpnessControl (an offset) as dynamic parameters or curves become drive clips. Actuator
+HapticSharpnessControl (an offset) as dynamic parameters or curves become drive clips; the
+controls shape continuous events only (transients keep their own values, as in files made by
+Lofelt's converter). Actuator
 amplitude is intensity squared, as Lofelt's converter writes it. Audio events are skipped.
 Writing: the drive layer is analysed into intensity and sharpness curves (at most 16 control
 points each, chained) over continuous events of at most 30 s, and transients.
@@ -103,12 +105,11 @@ class AhapFormat:
         continuous = [e for e in events if e["type"] == "HapticContinuous"]
         if continuous:
             placements.append(self._continuous(continuous, intensity, sharp_offset, rate, path))
-        for e in events:
+        for e in events:  # controls shape continuous events only, as Lofelt's converter assumes
             if e["type"] == "HapticTransient":
-                i = int(min(np.searchsorted(intensity.t, e["time"]), n - 1))
-                level = min(e["intensity"] * intensity.values[i], 1.0)
-                sharp = float(np.clip(e["sharpness"] + sharp_offset.values[i], 0.0, 1.0))
-                placements.append(vib.transient_placement(e["time"], level**2, sharp))
+                placements.append(
+                    vib.transient_placement(e["time"], e["intensity"] ** 2, e["sharpness"])
+                )
         if progress is not None:
             progress(1.0)
         return vib.imported(placements, notes, path.name)
