@@ -10,6 +10,7 @@ from timeline.errors import HapticTimelineError
 
 # Each verb module defines add_parser(subparsers) which sets `func` on its parser.
 VERB_MODULES = [
+    "timeline.cli.edit_cmd",
     "timeline.cli.render_cmd",
     "timeline.cli.info_cmd",
     "timeline.cli.play_cmd",

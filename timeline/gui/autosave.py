@@ -1,0 +1,103 @@
+"""Autosave after a few seconds of idle, and recovery of what a crashed session left behind."""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import platformdirs
+from PySide6.QtCore import QObject, QTimer
+
+from timeline import projectfile
+from timeline.model import Project
+
+from .document import Document
+
+IDLE_MS = 3000
+
+
+def data_dir() -> Path:
+    """The editor's folder in the user data directory (autosaves, recent files)."""
+    path = Path(platformdirs.user_data_dir("haptic-timeline"))
+    path.mkdir(parents=True, exist_ok=True)
+    return path
+
+
+def autosave_dir() -> Path:
+    path = data_dir() / "autosave"
+    path.mkdir(parents=True, exist_ok=True)
+    return path
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+@dataclass(frozen=True)
+class Recoverable:
+    """An autosave left by a session that did not close: the file and the project it was editing."""
+
+    autosave: Path
+    original: Path | None
+
+    def load(self) -> Project:
+        return projectfile.load(self.autosave)
+
+    def discard(self) -> None:
+        self.autosave.unlink(missing_ok=True)
+        self.autosave.with_suffix(".json").unlink(missing_ok=True)
+
+
+def recoverable() -> list[Recoverable]:
+    """Autosaves of sessions whose process is gone, newest first."""
+    found = []
+    for meta in sorted(
+        autosave_dir().glob("*.json"), key=lambda p: p.stat().st_mtime, reverse=True
+    ):
+        try:
+            info = json.loads(meta.read_text())
+            pid = int(info["pid"])
+        except (OSError, ValueError, KeyError, TypeError):
+            continue
+        htl = meta.with_suffix(".htl")
+        if pid == os.getpid() or _alive(pid) or not htl.exists():
+            continue
+        found.append(Recoverable(htl, Path(info["path"]) if info.get("path") else None))
+    return found
+
+
+class Autosaver(QObject):
+    """Writes the document to the autosave folder once it has been idle for IDLE_MS."""
+
+    def __init__(self, doc: Document, idle_ms: int = IDLE_MS) -> None:
+        super().__init__()
+        self.doc = doc
+        self.timer = QTimer(self)
+        self.timer.setSingleShot(True)
+        self.timer.setInterval(idle_ms)
+        self.timer.timeout.connect(self.save_now)
+        doc.changed.connect(lambda _: self.timer.start())
+        self.path = autosave_dir() / f"session-{os.getpid()}.htl"
+
+    def save_now(self) -> None:
+        """Write the autosave (only when there are unsaved changes)."""
+        if not self.doc.modified:
+            self.discard()
+            return
+        projectfile.save(self.doc.project, self.path)
+        meta = {"pid": os.getpid(), "path": str(self.doc.path) if self.doc.path else ""}
+        self.path.with_suffix(".json").write_text(json.dumps(meta))
+
+    def discard(self) -> None:
+        """Remove this session's autosave (after a save or a clean close)."""
+        self.timer.stop()
+        self.path.unlink(missing_ok=True)
+        self.path.with_suffix(".json").unlink(missing_ok=True)

@@ -1,0 +1,190 @@
+"""A clip on the timeline: its waveform (peak columns), fades, gain, mirror line and handles."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from PySide6.QtCore import QPointF, QRectF, Qt
+from PySide6.QtGui import QBrush, QColor, QFont, QPainter, QPainterPath, QPen, QPolygonF
+from PySide6.QtWidgets import QGraphicsItem, QStyleOptionGraphicsItem, QWidget
+
+from timeline.fades import fade_in_gain
+from timeline.model import Clip
+from timeline.tiles import Tile
+
+from .clip_shape import clip_columns
+from .geometry import CLIP_MARGIN, Geometry
+
+EDGE_PX = 6.0
+HANDLE_PX = 9.0
+VALUE_RANGE = 1.0  # the lane shows -1 .. 1 of the tile's full scale
+
+
+class ClipItem(QGraphicsItem):
+    """Draws one clip; the view decides what a mouse press on it means (see `zone`)."""
+
+    def __init__(self, geometry: Geometry) -> None:
+        super().__init__()
+        self.geometry = geometry
+        self.clip: Clip | None = None
+        self.tile: Tile | None = None
+        self.colour = QColor("#888888")
+        self.rate = 10_000.0
+        self.selected = False
+        self.track_id = ""
+        self.setFlag(QGraphicsItem.GraphicsItemFlag.ItemUsesExtendedStyleOption)
+        self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
+        self._w = 1.0
+        self._h = 1.0
+
+    def update_from(
+        self,
+        clip: Clip,
+        tile: Tile,
+        track_id: str,
+        lane: int,
+        colour: str,
+        rate: float,
+        selected: bool,
+    ) -> None:
+        """Show a clip state at a lane (cheap when nothing changed)."""
+        g = self.geometry
+        w = max(2.0, g.x(clip.duration))
+        h = g.lane_height - 2 * CLIP_MARGIN
+        same = (
+            clip == self.clip
+            and tile is self.tile
+            and self.selected == selected
+            and (w, h) == (self._w, self._h)
+            and self.colour.name() == QColor(colour).name()
+        )
+        if (w, h) != (self._w, self._h):
+            self.prepareGeometryChange()
+        self.clip, self.tile, self.track_id, self.rate = clip, tile, track_id, rate
+        self.colour, self.selected, self._w, self._h = QColor(colour), selected, w, h
+        self.setPos(g.x(clip.start), g.lane_top(lane) + CLIP_MARGIN)
+        self.setZValue(2 if selected else 1)
+        if not same:
+            self.update()
+
+    # --- geometry and hit zones -----------------------------------------------------------
+
+    def boundingRect(self) -> QRectF:
+        return QRectF(-1, -1, self._w + 2, self._h + 2)
+
+    def value_y(self, value: float) -> float:
+        """Item y of a clip value (tile units)."""
+        half = self._h / 2 - 3
+        return self._h / 2 - max(-1.2, min(1.2, value / VALUE_RANGE)) * half
+
+    def y_value(self, y: float) -> float:
+        """Clip value (tile units) at an item y."""
+        half = self._h / 2 - 3
+        return (self._h / 2 - y) / half * VALUE_RANGE
+
+    def fade_handle(self, which: str) -> QPointF:
+        """Where the fade-in or fade-out handle sits (item coordinates)."""
+        clip = self.clip
+        if which == "in":
+            return QPointF(self.geometry.x(clip.fade_in.length), 0.0)
+        return QPointF(self._w - self.geometry.x(clip.fade_out.length), 0.0)
+
+    def zone(self, pos: QPointF) -> str:
+        """What a press at an item position grabs: fade-in, fade-out, left, right or body."""
+        for which in ("in", "out"):
+            h = self.fade_handle(which)
+            if abs(pos.x() - h.x()) <= HANDLE_PX and pos.y() <= HANDLE_PX + 2:
+                return f"fade-{which}"
+        edge = min(EDGE_PX, self._w / 4)
+        if pos.x() <= edge:
+            return "left"
+        if pos.x() >= self._w - edge:
+            return "right"
+        return "body"
+
+    # --- painting -------------------------------------------------------------------------
+
+    def paint(
+        self, painter: QPainter, option: QStyleOptionGraphicsItem, widget: QWidget | None = None
+    ) -> None:
+        clip, w, h = self.clip, self._w, self._h
+        if clip is None:
+            return
+        fill = QColor(self.colour)
+        fill.setAlpha(70 if not self.selected else 110)
+        painter.setPen(QPen(self.colour.darker(130), 1))
+        painter.setBrush(QBrush(fill))
+        painter.drawRoundedRect(QRectF(0, 0, w, h), 4, 4)
+        exposed = option.exposedRect.intersected(QRectF(0, 0, w, h))
+        self._paint_wave(painter, exposed)
+        self._paint_fades(painter)
+        if clip.pivot != 0.0 or self.selected:
+            painter.setPen(QPen(QColor("#444444"), 1, Qt.PenStyle.DashLine))
+            y = self.value_y(clip.pivot)
+            painter.drawLine(QPointF(0, y), QPointF(w, y))
+        self._paint_label(painter)
+        if self.selected:
+            painter.setBrush(Qt.BrushStyle.NoBrush)
+            painter.setPen(QPen(QColor("#1a1a1a"), 2))
+            painter.drawRoundedRect(QRectF(1, 1, w - 2, h - 2), 4, 4)
+
+    def _paint_wave(self, painter: QPainter, exposed: QRectF) -> None:
+        clip = self.clip
+        if exposed.width() <= 0:
+            return
+        x0, x1 = math.floor(exposed.left()), math.ceil(exposed.right())
+        count = max(1, x1 - x0)
+        t0 = clip.start + self.geometry.u(x0)
+        t1 = clip.start + self.geometry.u(x1)
+        lo, hi = clip_columns(clip, self.tile, self.rate, t0, t1, count)
+        xs = x0 + np.arange(count) + 0.5
+        top = [QPointF(x, self.value_y(v)) for x, v in zip(xs, hi, strict=True)]
+        bottom = [QPointF(x, self.value_y(v)) for x, v in zip(xs[::-1], lo[::-1], strict=True)]
+        painter.setPen(QPen(self.colour.darker(160), 1))
+        painter.setBrush(QBrush(self.colour.darker(115)))
+        painter.drawPolygon(QPolygonF(top + bottom))
+        painter.setPen(QPen(QColor(0, 0, 0, 60), 1))
+        painter.drawLine(
+            QPointF(exposed.left(), self.value_y(0)), QPointF(exposed.right(), self.value_y(0))
+        )
+
+    def _paint_fades(self, painter: QPainter) -> None:
+        clip = self.clip
+        painter.setPen(QPen(QColor("#202020"), 1))
+        for which, fade in (("in", clip.fade_in), ("out", clip.fade_out)):
+            length = self.geometry.x(fade.length)
+            if length >= 1:
+                xs = np.linspace(0.0, 1.0, 24)
+                gain = fade_in_gain(xs, fade.shape)
+                path = QPainterPath()
+                for i, (x, g) in enumerate(zip(xs, gain, strict=True)):
+                    px = x * length if which == "in" else self._w - x * length
+                    point = QPointF(px, self._h * (1 - g))
+                    path.moveTo(point) if i == 0 else path.lineTo(point)
+                painter.setBrush(Qt.BrushStyle.NoBrush)
+                painter.drawPath(path)
+            handle = self.fade_handle(which)
+            painter.setBrush(QBrush(QColor("#ffffff")))
+            painter.drawRect(QRectF(handle.x() - 4, 0, 8, 8))
+
+    def _paint_label(self, painter: QPainter) -> None:
+        clip, tile = self.clip, self.tile
+        parts = [tile.name]
+        if clip.gain != 1.0:
+            parts.append(f"gain {clip.gain:.2g}")
+        if clip.scale != 1.0:
+            parts.append(f"×{clip.scale:.2g}")
+        if clip.stretch != 1.0:
+            parts.append(f"stretch {clip.stretch:.2g}")
+        if clip.reverse:
+            parts.append("reversed")
+        font = QFont()
+        font.setPointSizeF(8.0)
+        painter.setFont(font)
+        painter.setPen(QColor("#111111"))
+        rect = QRectF(10, 9, max(0.0, self._w - 20), 14)
+        text = painter.fontMetrics().elidedText(
+            "  ".join(parts), Qt.TextElideMode.ElideRight, int(rect.width())
+        )
+        painter.drawText(rect, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter, text)

@@ -1,0 +1,134 @@
+"""The open document: the undo history, the file path and the selection, with change signals.
+
+The view only requests changes through `apply`; an edit that refuses (EditError) leaves the
+project untouched and reports one sentence to the message bar.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from PySide6.QtCore import QObject, Signal
+
+from timeline.errors import HapticTimelineError
+from timeline.history import History
+from timeline.model import Project
+
+
+class Document(QObject):
+    """One project being edited: history (undo/redo, modified flag), path and selection."""
+
+    changed = Signal(object)  # the new Project
+    selection_changed = Signal()
+    message = Signal(str, str)  # text, level ("info" or "error")
+    modified_changed = Signal(bool)
+
+    def __init__(self, project: Project, path: Path | None = None) -> None:
+        super().__init__()
+        self.history = History(project)
+        self.path = path
+        self.selected_clips: list[str] = []
+        self.selected_tile: str | None = None
+
+    @property
+    def project(self) -> Project:
+        return self.history.project
+
+    @property
+    def modified(self) -> bool:
+        return self.history.modified
+
+    def apply(
+        self,
+        label: str,
+        edit: Callable[..., Any],
+        *args: Any,
+        merge_key: object = None,
+        base: Project | None = None,
+        **kwargs: Any,
+    ) -> Any:
+        """Run an edit on the project (or on `base`, a drag's starting state) and record it.
+
+        Returns the edit's extra result (a new id) or True; None when the edit was refused.
+        """
+        try:
+            result = edit(self.project if base is None else base, *args, **kwargs)
+        except HapticTimelineError as exc:
+            self.message.emit(str(exc), "error")
+            return None
+        project, extra = result if isinstance(result, tuple) else (result, True)
+        self.history.do(label, project, merge_key)
+        self._prune_selection()
+        self._emit_changed()
+        return extra
+
+    def replace(self, label: str, project: Project, merge_key: object = None) -> None:
+        """Record a project computed elsewhere (an import) as one step."""
+        self.history.do(label, project, merge_key)
+        self._prune_selection()
+        self._emit_changed()
+
+    def undo(self) -> None:
+        """Step back one action."""
+        if not self.history.can_undo:
+            self.message.emit("nothing to undo", "info")
+            return
+        label = self.history.undo_label
+        self.history.undo()
+        self.message.emit(f"undid {label}", "info")
+        self._prune_selection()
+        self._emit_changed()
+
+    def redo(self) -> None:
+        """Step forward one action."""
+        if not self.history.can_redo:
+            self.message.emit("nothing to redo", "info")
+            return
+        self.history.redo()
+        self.message.emit(f"redid {self.history.undo_label}", "info")
+        self._prune_selection()
+        self._emit_changed()
+
+    def reset(self, project: Project, path: Path | None) -> None:
+        """Start over on another project (a fresh history, nothing selected)."""
+        self.history = History(project)
+        self.path = path
+        self.select_clips([])
+        self.select_tile(None)
+        self._emit_changed()
+
+    def mark_saved(self, path: Path) -> None:
+        """Remember the file the project was saved to, and that it is clean."""
+        self.path = path
+        self.history.mark_clean()
+        self._emit_modified()
+
+    def select_clips(self, clip_ids: list[str]) -> None:
+        """Replace the clip selection."""
+        clip_ids = list(dict.fromkeys(clip_ids))
+        if clip_ids != self.selected_clips:
+            self.selected_clips = clip_ids
+            self.selection_changed.emit()
+
+    def select_tile(self, tile_id: str | None) -> None:
+        """Choose the tile shown in the waveform editor."""
+        if tile_id != self.selected_tile:
+            self.selected_tile = tile_id
+            self.selection_changed.emit()
+
+    def _prune_selection(self) -> None:
+        present = {c.id for t in self.project.tracks for c in t.clips}
+        kept = [c for c in self.selected_clips if c in present]
+        tile = self.selected_tile if self.selected_tile in self.project.tiles else None
+        if kept != self.selected_clips or tile != self.selected_tile:
+            self.selected_clips, self.selected_tile = kept, tile
+            self.selection_changed.emit()
+
+    def _emit_changed(self) -> None:
+        self.changed.emit(self.project)
+        self._emit_modified()
+
+    def _emit_modified(self) -> None:
+        self.modified_changed.emit(self.modified)

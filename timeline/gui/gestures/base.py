@@ -1,0 +1,44 @@
+"""What every timeline gesture has: the view it works in, its start state and its merge key."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from PySide6.QtCore import QPointF
+
+if TYPE_CHECKING:
+    from ..timeline_view import TimelineView
+
+
+class Gesture:
+    """A press-move-release interaction; subclasses override `moved` (and maybe `released`)."""
+
+    label = "edit"
+
+    def __init__(self, view: TimelineView, press: QPointF) -> None:
+        self.view = view
+        self.doc = view.doc
+        self.base = view.doc.project
+        self.press = press
+        self.merge_key = object()
+        self.dragged = False
+
+    def move(self, pos: QPointF) -> None:
+        """Follow the mouse (scene coordinates)."""
+        if not self.dragged and (pos - self.press).manhattanLength() < 3:
+            return
+        self.dragged = True
+        self.moved(pos)
+
+    def moved(self, pos: QPointF) -> None:
+        """Apply the edit for the current mouse position."""
+
+    def release(self, pos: QPointF) -> None:
+        """Finish the gesture."""
+        self.move(pos)
+
+    def apply(self, edit, *args, **kwargs) -> object:
+        """Apply an edit to the starting state, merged into this drag's single undo step."""
+        return self.doc.apply(
+            self.label, edit, *args, base=self.base, merge_key=self.merge_key, **kwargs
+        )

@@ -1,0 +1,47 @@
+"""Drag a clip's body along its track and across tracks (the new track gives it meaning)."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QPointF
+
+from timeline import edits
+from timeline.model import Project
+
+from .base import Gesture
+
+
+class MoveGesture(Gesture):
+    """Move the pressed clip, and the other selected clips with it in time."""
+
+    label = "move clip"
+
+    def __init__(self, view, press: QPointF, clip_id: str) -> None:
+        super().__init__(view, press)
+        self.clip_id = clip_id
+        self.others = [c for c in self.doc.selected_clips if c != clip_id]
+        track, self.clip = self.base.find_clip(clip_id)
+        self.track_id = track.id
+
+    def moved(self, pos: QPointF) -> None:
+        g = self.view.geometry
+        du = g.u(pos.x() - self.press.x())
+        moving = [self.clip_id, *self.others]
+        raw = self.clip.start + du
+        start = self.view.snap(raw, moving)
+        if start == raw:
+            start = self.view.snap(raw + self.clip.duration, moving) - self.clip.duration
+        start = max(0.0, start) if self.base.axis == "time" else start
+        target = self.view.track_at(pos.y())
+        track_id = target.id if target is not None else self.track_id
+        shift = start - self.clip.start
+        self.apply(_move_all, self.clip_id, start, track_id, self.others, shift)
+
+
+def _move_all(
+    project: Project, clip_id: str, start: float, track_id: str, others: list[str], shift: float
+) -> Project:
+    project = edits.move_clip(project, clip_id, start, track_id)
+    for other in others:
+        _, clip = project.find_clip(other)
+        project = edits.move_clip(project, other, clip.start + shift)
+    return project

@@ -1,0 +1,28 @@
+"""Alt-click (or Alt-drag) on a clip to place its horizontal mirror line at the mouse's level."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QPointF
+
+from timeline import edits
+
+from .base import Gesture
+
+
+class PivotGesture(Gesture):
+    """Place the clip's mirror line (what amplitude drags and inversion turn about)."""
+
+    label = "place mirror line"
+
+    def __init__(self, view, press: QPointF, clip_id: str) -> None:
+        super().__init__(view, press)
+        self.clip_id = clip_id
+        self.moved(press)
+
+    def move(self, pos: QPointF) -> None:
+        self.moved(pos)
+
+    def moved(self, pos: QPointF) -> None:
+        item = self.view.clip_item(self.clip_id)
+        value = round(item.y_value(item.mapFromScene(pos).y()), 3)
+        self.apply(edits.set_pivot, self.clip_id, value)

@@ -1,0 +1,126 @@
+"""Live playback: a paced stream of coefficient blocks rendered from the newest project state.
+
+Qt-free. The stream is what a device's `play` pulls block by block; `set_project` only swaps a
+reference, and the next block pulled is rendered from the new state (mixer caches make that a
+re-sum of the touched blocks), so an edit is felt within about one block period.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from timeline.devices import CoefficientBlock
+from timeline.kinds import track_kind
+from timeline.mixer import Mixer
+from timeline.model import Project
+
+BLOCK_SECONDS = 0.01
+CHUNK_SECONDS = 0.5
+LEAD_SECONDS = 0.02  # how far ahead of the wall clock blocks are handed over
+
+
+@dataclass
+class StreamState:
+    """Where the stream is and which project version it is playing."""
+
+    position: float = 0.0
+    version: int = 0
+    live_version: int = -1  # version of the last block handed to the device
+    live_at: float = 0.0  # perf_counter when that version first went out
+
+
+class LiveStream:
+    """Iterates CoefficientBlocks over [start, stop) (looping if asked), in real time if paced."""
+
+    def __init__(
+        self,
+        project: Project,
+        rate: float,
+        start: float,
+        stop: float,
+        loop: bool = False,
+        tracks: Iterable[str] | None = None,
+        paced: bool = True,
+        quality: str = "draft",
+    ) -> None:
+        self.rate, self.start, self.stop, self.loop = rate, start, max(stop, start), loop
+        self.tracks = None if tracks is None else list(tracks)
+        self.paced, self.quality = paced, quality
+        self.mixer = Mixer(cache_bytes=256 * 2**20)
+        self.state = StreamState(position=start)
+        self._project = project
+        self._chunk: tuple[int, float, CoefficientBlock] | None = None  # (version, t0, block)
+        self._stopped = threading.Event()
+        self.on_block: Callable[[StreamState], None] | None = None
+        self.mass = _has_mass(project)
+
+    def set_project(self, project: Project) -> int:
+        """Play a new project state from the next block on; returns its version."""
+        self._project = project
+        self.state.version += 1
+        return self.state.version
+
+    def stop_stream(self) -> None:
+        """End the stream after the current block."""
+        self._stopped.set()
+
+    def __iter__(self) -> Iterator[CoefficientBlock]:
+        n = max(1, round(BLOCK_SECONDS * self.rate))
+        t = self.start
+        clock = time.perf_counter()
+        played = 0.0
+        while not self._stopped.is_set():
+            if t >= self.stop - 0.5 / self.rate:
+                if not self.loop or self.stop <= self.start:
+                    return
+                t = self.start
+            count = min(n, max(1, round((self.stop - t) * self.rate)))
+            block = self._block(t, count)
+            if self.paced:
+                delay = clock + played - LEAD_SECONDS - time.perf_counter()
+                if delay > 0:
+                    time.sleep(delay)
+            state = self.state
+            if state.live_version != state.version:
+                state.live_version, state.live_at = state.version, time.perf_counter()
+            state.position = t
+            if self.on_block:
+                self.on_block(state)
+            yield block
+            t += count / self.rate
+            played += count / self.rate
+
+    def _block(self, t: float, count: int) -> CoefficientBlock:
+        """Samples [t, t + count/rate) from the cached chunk, re-rendered if the state changed."""
+        version = self.state.version
+        chunk = self._chunk
+        i0 = 0 if chunk is None else round((t - chunk[1]) * self.rate)
+        if chunk is None or chunk[0] != version or i0 < 0 or i0 + count > len(chunk[2]):
+            chunk_stop = min(self.stop, t + max(CHUNK_SECONDS, count / self.rate))
+            chunk = self._chunk = (version, t, self.render(self._project, t, chunk_stop))
+            i0 = 0
+        block = chunk[2]
+        m = None if block.m is None else block.m[i0 : i0 + count]
+        return CoefficientBlock(
+            block.d[i0 : i0 + count], block.k[i0 : i0 + count], block.b[i0 : i0 + count], m
+        )
+
+    def render(self, project: Project, t0: float, t1: float) -> CoefficientBlock:
+        """The project's coefficients d, k, b (and m) on [t0, t1) at the device rate."""
+        layers = self.mixer.render(project, t0, t1, self.rate, self.quality, self.tracks)
+        n = max(1, round((t1 - t0) * self.rate))
+        terms = {"d": np.zeros(n), "k": np.zeros(n), "b": np.zeros(n), "m": np.zeros(n)}
+        for kind_id, values in layers.items():
+            terms[track_kind(kind_id).term][: len(values)] += values
+        return CoefficientBlock(
+            terms["d"], terms["k"], terms["b"], terms["m"] if self.mass else None
+        )
+
+
+def _has_mass(project: Project) -> bool:
+    return any(track_kind(t.kind).term == "m" and t.clips for t in project.tracks)

@@ -1,0 +1,532 @@
+"""The editor window: palette, track headers and lanes, waveform editor, transport, message bar."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QAction, QCloseEvent, QKeySequence
+from PySide6.QtWidgets import (
+    QFileDialog,
+    QGridLayout,
+    QMainWindow,
+    QMenu,
+    QMessageBox,
+    QSplitter,
+    QWidget,
+)
+
+from timeline import edits, importing, projectfile
+from timeline.errors import HapticTimelineError
+from timeline.formats import all_formats
+from timeline.model import Project
+from timeline.templates import template_tiles
+
+from . import variants
+from .autosave import Autosaver, Recoverable, recoverable
+from .document import Document
+from .file_jobs import FileJob, export_job, finish_export, import_job
+from .message_bar import MessageBar
+from .palette import Palette
+from .player import Player
+from .recent import recent_files, remember
+from .ruler import Ruler
+from .timeline_view import ZOOM_STEP, TimelineView
+from .track_header import HeaderColumn
+from .transport import Transport
+from .waveform_editor import WaveformEditor, read_range
+
+APP_NAME = "Haptic Timeline"
+
+
+def fresh_project(axis: str = "time") -> Project:
+    """A new project with the Templates tab filled and one track to start on."""
+    project = edits.new_project(axis)
+    for tile in template_tiles(axis):
+        project, _ = edits.add_tile(project, tile, "Templates")
+    project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
+    return project
+
+
+class MainWindow(QMainWindow):
+    """One window for the whole design loop: shape a tile, place it, play it, feel it, undo."""
+
+    def __init__(self, project: Project | None = None, path: Path | None = None) -> None:
+        super().__init__()
+        self.doc = Document(project or fresh_project(), path)
+        self.player = Player()
+        self.jobs: list[FileJob] = []
+        self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
+        self._build()
+        self.autosaver = Autosaver(self.doc)
+        self.doc.changed.connect(self._changed)
+        self.doc.message.connect(self.messages.show_message)
+        self.doc.modified_changed.connect(lambda _: self._update_title())
+        self.doc.selection_changed.connect(self._update_actions)
+        self.player.position.connect(self._follow_playhead)
+        self.player.finished.connect(self._play_finished)
+        self._update_title()
+        self._update_actions()
+        self.resize(1400, 860)
+
+    # --- layout ----------------------------------------------------------------------------
+
+    def _build(self) -> None:
+        doc = self.doc
+        self.view = TimelineView(doc)
+        self.headers = HeaderColumn(doc)
+        self.ruler = Ruler(self.view)
+        self.palette = Palette(doc)
+        self.editor = WaveformEditor(doc)
+        self.transport = Transport(self.player)
+        self.messages = MessageBar()
+        self.view.verticalScrollBar().valueChanged.connect(
+            self.headers.verticalScrollBar().setValue
+        )
+        self.view.files_dropped.connect(self.import_files)
+        self.view.context_requested.connect(self._fill_clip_menu)
+        self.palette.range_dropped.connect(self._range_dropped)
+        self.transport.play_button.clicked.connect(self.play_stop)
+        self.messages.cancel_requested.connect(self.cancel_jobs)
+
+        lanes = QWidget()
+        grid = QGridLayout(lanes)
+        grid.setContentsMargins(0, 0, 0, 0)
+        grid.setSpacing(0)
+        corner = QWidget()
+        corner.setFixedSize(self.headers.width(), self.ruler.height())
+        grid.addWidget(corner, 0, 0)
+        grid.addWidget(self.ruler, 0, 1)
+        grid.addWidget(self.headers, 1, 0)
+        grid.addWidget(self.view, 1, 1)
+
+        top = QSplitter(Qt.Orientation.Horizontal)
+        top.addWidget(self.palette)
+        top.addWidget(lanes)
+        top.setStretchFactor(1, 1)
+        top.setSizes([300, 1100])
+        bottom = QSplitter(Qt.Orientation.Horizontal)
+        bottom.addWidget(self.editor)
+        bottom.addWidget(self.transport)
+        bottom.setSizes([700, 700])
+        main = QSplitter(Qt.Orientation.Vertical)
+        main.addWidget(top)
+        main.addWidget(bottom)
+        main.setStretchFactor(0, 3)
+        main.setSizes([560, 260])
+        self.setCentralWidget(main)
+        self.statusBar().addWidget(self.messages, 1)
+        self.statusBar().setSizeGripEnabled(False)
+        self._menus()
+
+    def _action(
+        self, menu: QMenu, text: str, slot, shortcut: str | QKeySequence = "", tip: str = ""
+    ) -> QAction:
+        action = QAction(text, self)
+        if shortcut:
+            action.setShortcut(QKeySequence(shortcut))
+        action.setStatusTip(tip)
+        action.triggered.connect(lambda _=False: slot())
+        menu.addAction(action)
+        self.addAction(action)
+        return action
+
+    def _menus(self) -> None:
+        bar = self.menuBar()
+        file = bar.addMenu("&File")
+        self._action(file, "&New", lambda: self.new_project("time"), QKeySequence.StandardKey.New)
+        self._action(file, "New &position project", lambda: self.new_project("position"))
+        self._action(file, "&Open…", self.open_dialog, QKeySequence.StandardKey.Open)
+        self.recent_menu = file.addMenu("Open &recent")
+        self.recent_menu.aboutToShow.connect(self._fill_recent)
+        self._action(file, "&Save", self.save, QKeySequence.StandardKey.Save)
+        self._action(file, "Save &as…", self.save_as_dialog, "Ctrl+Shift+S")
+        file.addSeparator()
+        self._action(file, "&Import…", self.import_dialog, "Ctrl+Shift+I")
+        self._action(file, "&Export…", self.export_dialog, "Ctrl+E")
+        file.addSeparator()
+        self._action(file, "&Quit", self.close, QKeySequence.StandardKey.Quit)
+
+        edit = bar.addMenu("&Edit")
+        self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
+        self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
+        edit.addSeparator()
+        self.clip_actions = [
+            self._action(edit, "&Duplicate", self.duplicate, "Ctrl+D"),
+            self._action(edit, "Spl&it at cursor", self.split, "Ctrl+I"),
+            self._action(edit, "De&lete", self.delete, QKeySequence.StandardKey.Delete),
+            self._action(edit, "In&vert about mirror line", self.invert, "Ctrl+Shift+M"),
+            self._action(edit, "Re&verse", self.reverse, "Ctrl+R"),
+            self._action(edit, "&Merge into a palette tile", self.merge, "Ctrl+M"),
+        ]
+        fades = edit.addMenu("Fade &shape")
+        for shape in ("linear", "equal-power", "exponential", "s-curve"):
+            self._action(fades, shape, lambda s=shape: self.set_fade_shape(s))
+        self._action(edit, "Select &all", self.select_all, QKeySequence.StandardKey.SelectAll)
+
+        view = bar.addMenu("&View")
+        self._action(view, "Zoom &in", lambda: self.view.zoom(ZOOM_STEP), "Ctrl+=")
+        self._action(view, "Zoom &out", lambda: self.view.zoom(1 / ZOOM_STEP), "Ctrl+-")
+        self._action(view, "&Fit project", self.view.fit, "Ctrl+0")
+        self.snap_action = self._action(view, "&Snap to edges and grid", self.toggle_snap, "G")
+        self.snap_action.setCheckable(True)
+        self.snap_action.setChecked(True)
+
+        play = bar.addMenu("&Transport")
+        self._action(play, "&Play / stop", self.play_stop, "Space")
+        self._action(play, "&Loop", self.transport.loop.toggle, "L")
+
+        var = bar.addMenu("&Variants")
+        self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
+        self._action(var, "Switch to &next variant", self.next_variant, "V")
+
+        tracks = bar.addMenu("T&racks")
+        self._action(tracks, "&Add track…", self.headers._show_kinds)
+
+    # --- window state ----------------------------------------------------------------------
+
+    def _changed(self, project: Project) -> None:
+        self.player.follow(project)
+        self._update_actions()
+
+    def _update_title(self) -> None:
+        name = self.doc.path.name if self.doc.path else "untitled"
+        star = "*" if self.doc.modified else ""
+        self.setWindowTitle(f"{star}{name} — {APP_NAME}")
+        self.setWindowModified(self.doc.modified)
+
+    def _update_actions(self) -> None:
+        has = bool(self.doc.selected_clips)
+        for action in self.clip_actions:
+            action.setEnabled(has)
+        history = self.doc.history
+        self.undo_action.setText(f"&Undo {history.undo_label}".rstrip())
+        self.redo_action.setText(f"&Redo {history.redo_label}".rstrip())
+
+    def _fill_clip_menu(self, menu: QMenu) -> None:
+        if not self.doc.selected_clips:
+            return
+        for action in self.clip_actions:
+            menu.addAction(action)
+
+    def _fill_recent(self) -> None:
+        self.recent_menu.clear()
+        for path in recent_files():
+            self.recent_menu.addAction(str(path)).triggered.connect(
+                lambda _=False, p=path: self.open_path(p)
+            )
+
+    # --- clip commands (each one undo step) ------------------------------------------------
+
+    def _each(self, label: str, edit) -> None:
+        ids = list(self.doc.selected_clips)
+        if not ids:
+            self.messages.show_message("select a clip first", "error")
+            return
+
+        def all_of(project: Project) -> Project:
+            for clip_id in ids:
+                project = edit(project, clip_id)
+            return project
+
+        self.doc.apply(label, all_of)
+
+    def duplicate(self) -> None:
+        """Copy the selected clips, each right after itself."""
+        self._each("duplicate", lambda p, c: edits.duplicate_clip(p, c)[0])
+
+    def split(self) -> None:
+        """Split the selected clips (or the clips under the cursor) at the edit cursor."""
+        at = self.view.scene().cursor_u
+        project = self.doc.project
+        chosen = self.doc.selected_clips or [c.id for t in project.tracks for c in t.clips]
+        ids = [
+            i for i in chosen if project.find_clip(i)[1].start < at < project.find_clip(i)[1].end
+        ]
+        if not ids:
+            self.messages.show_message("place the cursor inside a clip to split it", "error")
+            return
+
+        def split_all(project: Project) -> Project:
+            for clip_id in ids:
+                project, _ = edits.split_clip(project, clip_id, at)
+            return project
+
+        self.doc.apply("split", split_all)
+
+    def delete(self) -> None:
+        """Remove the selected clips."""
+        ids = list(self.doc.selected_clips)
+        if ids:
+            self.doc.apply("delete", edits.remove_clips, ids)
+
+    def invert(self) -> None:
+        """Mirror the selected clips about their mirror lines."""
+        self._each("invert", edits.invert_clip)
+
+    def reverse(self) -> None:
+        """Play the selected clips backwards."""
+        self._each("reverse", edits.reverse_clip)
+
+    def set_fade_shape(self, shape: str) -> None:
+        """Give the selected clips' fades a shape."""
+
+        def shaped(project: Project, clip_id: str) -> Project:
+            _, clip = project.find_clip(clip_id)
+            project = edits.set_fade(project, clip_id, "in", clip.fade_in.length, shape)
+            return edits.set_fade(project, clip_id, "out", clip.fade_out.length, shape)
+
+        self._each(f"{shape} fades", shaped)
+
+    def merge(self) -> None:
+        """Superimpose the selected clips into one new tile in the Scratch tab."""
+        ids = list(self.doc.selected_clips)
+        tile_id = self.doc.apply("merge to palette", edits.merge_clips, ids, replace_clips=False)
+        if tile_id:
+            self.doc.select_tile(tile_id)
+            self.messages.show_message(f"merged {len(ids)} clips into a new tile in Scratch")
+
+    def select_all(self) -> None:
+        self.doc.select_clips([c.id for t in self.doc.project.tracks for c in t.clips])
+
+    def toggle_snap(self) -> None:
+        self.view.snapping = not self.view.snapping
+        self.snap_action.setChecked(self.view.snapping)
+        self.messages.show_message("snapping on" if self.view.snapping else "snapping off")
+
+    def save_variant(self) -> None:
+        """Save the design as the next variant (A, B, ...)."""
+        name = variants.next_name(self.doc.project)
+        if self.doc.apply("save variant", variants.save_next, name):
+            self.messages.show_message(f"saved variant {name}; press V to switch between variants")
+
+    def next_variant(self) -> None:
+        """Switch to the next variant, to compare by feel."""
+        if self.doc.apply("switch variant", variants.switch_next):
+            self.messages.show_message(f"now playing variant {self.doc.project.active_variant}")
+
+    def _range_dropped(self, tab: str, mime) -> None:
+        tile_id, a, b = read_range(mime)
+        self.editor.range_to_palette(tab, tile_id, a, b)
+
+    # --- transport -------------------------------------------------------------------------
+
+    def play_stop(self) -> None:
+        """Play the project (or the selected clips' tracks) from the cursor, or stop."""
+        if self.player.playing:
+            self.player.stop()
+            self.transport.show_playing(False)
+            return
+        project = self.doc.project
+        tracks = None
+        if self.transport.selected_only.isChecked():
+            tracks = list(
+                dict.fromkeys(project.find_clip(c)[0].id for c in self.doc.selected_clips)
+            )
+            if not tracks:
+                self.messages.show_message("select clips on the tracks to play", "error")
+                return
+        start = self.view.scene().cursor_u if self.view.scene().cursor_u < project.duration else 0.0
+        self.transport.scope.clear()
+        self.player.play(project, start, None, self.transport.loop.isChecked(), tracks)
+        self.transport.show_playing(self.player.playing)
+
+    def _follow_playhead(self, u: float) -> None:
+        self.view.scene().set_playhead(u)
+        self.ruler.update()
+        self.transport.where.setText(f"{u:.3f} {self.doc.project.unit}")
+
+    def _play_finished(self, error: str) -> None:
+        self.transport.show_playing(False)
+        if error:
+            self.messages.show_message(error, "error")
+
+    # --- files -----------------------------------------------------------------------------
+
+    def new_project(self, axis: str) -> None:
+        if self.confirm_discard():
+            self._load(fresh_project(axis), None)
+
+    def _load(self, project: Project, path: Path | None) -> None:
+        self.player.stop()
+        self.autosaver.discard()
+        self.doc.reset(project, path)
+        self.view.fit()
+
+    def open_path(self, path: Path) -> bool:
+        """Open a project file (after asking about unsaved changes)."""
+        if not self.confirm_discard():
+            return False
+        try:
+            project = projectfile.load(path)
+        except HapticTimelineError as exc:
+            self.messages.show_message(str(exc), "error")
+            return False
+        self._load(project, Path(path))
+        remember(Path(path))
+        self.messages.show_message(f"opened {Path(path).name}")
+        return True
+
+    def open_dialog(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Open project", "", "Haptic timeline (*.htl)")
+        if path:
+            self.open_path(Path(path))
+
+    def save_to(self, path: Path) -> bool:
+        """Save atomically; the title loses its unsaved mark."""
+        try:
+            projectfile.save(self.doc.project, path)
+        except (HapticTimelineError, OSError) as exc:
+            self.messages.show_message(f"could not save: {exc}", "error")
+            return False
+        self.doc.mark_saved(Path(path))
+        self.autosaver.discard()
+        remember(Path(path))
+        self.messages.show_message(f"saved {Path(path).name}")
+        return True
+
+    def save(self) -> bool:
+        if self.doc.path is None:
+            return self.save_as_dialog()
+        return self.save_to(self.doc.path)
+
+    def save_as_dialog(self) -> bool:
+        path, _ = QFileDialog.getSaveFileName(self, "Save project", "", "Haptic timeline (*.htl)")
+        if not path:
+            return False
+        path = Path(path if path.endswith(".htl") else path + ".htl")
+        return self.save_to(path)
+
+    def _extensions(self, key: str) -> str:
+        found = sorted({e for f in all_formats().values() if getattr(f, key) for e in f.extensions})
+        return " ".join(f"*{e}" for e in found)
+
+    def import_dialog(self) -> None:
+        paths, _ = QFileDialog.getOpenFileNames(
+            self, "Import", "", f"Importable ({self._extensions('reads')})"
+        )
+        if paths:
+            track = next((t for t in self.doc.project.tracks), None)
+            self.import_files(
+                [Path(p) for p in paths], track.id if track else "", self.view.scene().cursor_u
+            )
+
+    def import_files(self, paths: list[Path], track_id: str, at: float) -> None:
+        """Import files in the background onto a track (its kind gives them meaning)."""
+        kind = self.doc.project.track(track_id).kind if track_id else importing.DEFAULT_KIND
+        for path in paths:
+            job = import_job(path)
+            job.done.connect(
+                lambda imported, j=job, p=path: self._imported(j, p, imported, kind, at)
+            )
+            self._start(job, f"importing {path.name}…")
+
+    def _imported(self, job: FileJob, path: Path, imported, kind: str, at: float) -> None:
+        self._finish(job)
+        if job.cancelled:
+            self.messages.show_message("import cancelled; nothing was changed")
+            return
+        try:
+            project, clip_ids = importing.place(self.doc.project, imported, kind=kind, at=at)
+        except HapticTimelineError as exc:
+            self.messages.show_message(str(exc), "error")
+            return
+        self.doc.replace(f"import {path.name}", project)
+        self.doc.select_clips(clip_ids)
+        notes = "; ".join(imported.notes)
+        self.messages.show_message(f"imported {path.name}" + (f" ({notes})" if notes else ""))
+
+    def export_dialog(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(
+            self, "Export", "", f"Exportable ({self._extensions('writes')})"
+        )
+        if path:
+            self.export_to(Path(path))
+
+    def export_to(self, path: Path) -> FileJob:
+        """Export in the background; the file appears only when the export has finished."""
+        job = export_job(self.doc.project, path)
+        job.done.connect(lambda tmp, j=job: self._exported(j, tmp, path))
+        self._start(job, f"exporting {path.name}…")
+        return job
+
+    def _exported(self, job: FileJob, tmp: Path, path: Path) -> None:
+        self._finish(job)
+        finish_export(tmp, path, job.cancelled)
+        self.messages.show_message("export cancelled" if job.cancelled else f"exported {path.name}")
+
+    def _start(self, job: FileJob, text: str) -> None:
+        self.jobs.append(job)
+        job.progress.connect(self.messages.set_progress)
+        job.failed.connect(
+            lambda error, j=job: (self._finish(j), self.messages.show_message(error, "error"))
+        )
+        self.messages.show_message(text)
+        self.messages.set_progress(0.0)
+        job.start()
+
+    def _finish(self, job: FileJob) -> None:
+        if job in self.jobs:
+            self.jobs.remove(job)
+        if not self.jobs:
+            self.messages.set_progress(None)
+
+    def cancel_jobs(self) -> None:
+        """Cancel running imports and exports."""
+        for job in self.jobs:
+            job.cancel()
+
+    # --- recovery and closing --------------------------------------------------------------
+
+    def offer_recovery(self) -> list[Recoverable]:
+        """If a crashed session left an autosave, offer it in the message bar."""
+        found = recoverable()
+        if found:
+            entry = found[0]
+            where = entry.original.name if entry.original else "an untitled project"
+            self.messages.offer(
+                f"Unsaved work on {where} was recovered from a crash.",
+                "Recover",
+                lambda: self.recover(entry),
+            )
+        return found
+
+    def recover(self, entry: Recoverable) -> None:
+        """Load an autosave as unsaved changes to its original file."""
+        try:
+            project = entry.load()
+        except HapticTimelineError as exc:
+            self.messages.show_message(str(exc), "error")
+            return
+        self._load(self.doc.project, entry.original)
+        self.doc.replace("recover", project)
+        entry.discard()
+        self.messages.show_message("recovered; save to keep it")
+
+    def _ask_unsaved(self) -> QMessageBox.StandardButton:
+        buttons = QMessageBox.StandardButton
+        return QMessageBox.question(
+            self,
+            APP_NAME,
+            "Save changes before closing?",
+            buttons.Save | buttons.Discard | buttons.Cancel,
+            buttons.Save,
+        )
+
+    def confirm_discard(self) -> bool:
+        """With unsaved changes, ask once: save, discard or cancel."""
+        if not self.doc.modified:
+            return True
+        answer = self.ask_unsaved()
+        if answer == QMessageBox.StandardButton.Save:
+            return self.save()
+        return answer == QMessageBox.StandardButton.Discard
+
+    def closeEvent(self, event: QCloseEvent) -> None:
+        if not self.confirm_discard():
+            event.ignore()
+            return
+        self.player.close()
+        self.autosaver.discard()
+        event.accept()

@@ -1,0 +1,77 @@
+"""The message bar: status and errors in one line at the bottom, never a modal pop-up."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QWidget
+
+COLOURS = {"info": "#1f1f1f", "error": "#b00020"}
+INFO_SECONDS = 6
+
+
+class MessageBar(QWidget):
+    """One line of text (errors in red), an optional action button, progress with Cancel."""
+
+    cancel_requested = Signal()
+
+    def __init__(self) -> None:
+        super().__init__()
+        layout = QHBoxLayout(self)
+        layout.setContentsMargins(8, 2, 8, 2)
+        self.label = QLabel("")
+        self.label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.action = QPushButton()
+        self.action.hide()
+        self.progress = QProgressBar()
+        self.progress.setMaximumWidth(220)
+        self.progress.setRange(0, 1000)
+        self.progress.hide()
+        self.cancel = QPushButton("Cancel")
+        self.cancel.hide()
+        self.cancel.clicked.connect(self.cancel_requested)
+        layout.addWidget(self.label, 1)
+        layout.addWidget(self.action)
+        layout.addWidget(self.progress)
+        layout.addWidget(self.cancel)
+        self.history: list[tuple[str, str]] = []
+        self._clear = QTimer(self)
+        self._clear.setSingleShot(True)
+        self._clear.timeout.connect(lambda: self.label.setText(""))
+        self._callback = None
+        self.action.clicked.connect(self._run_action)
+
+    @property
+    def text(self) -> str:
+        return self.label.text()
+
+    def show_message(self, text: str, level: str = "info") -> None:
+        """Show a sentence; info fades after a few seconds, errors stay until the next message."""
+        self.history.append((text, level))
+        self.label.setText(text)
+        self.label.setStyleSheet(f"color: {COLOURS.get(level, COLOURS['info'])};")
+        if level == "info":
+            self._clear.start(INFO_SECONDS * 1000)
+        else:
+            self._clear.stop()
+
+    def offer(self, text: str, button: str, callback) -> None:
+        """Show a message with a button (e.g. Recover) that runs callback once."""
+        self.show_message(text, "info")
+        self._clear.stop()
+        self._callback = callback
+        self.action.setText(button)
+        self.action.show()
+
+    def _run_action(self) -> None:
+        callback, self._callback = self._callback, None
+        self.action.hide()
+        if callback:
+            callback()
+
+    def set_progress(self, fraction: float | None) -> None:
+        """Show a progress fraction with Cancel, or hide both (None)."""
+        busy = fraction is not None
+        self.progress.setVisible(busy)
+        self.cancel.setVisible(busy)
+        if busy:
+            self.progress.setValue(int(max(0.0, min(1.0, fraction)) * 1000))

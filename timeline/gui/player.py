@@ -1,0 +1,142 @@
+"""Play the project on a device in a worker thread, follow edits live, report telemetry.
+
+Time projects stream through LiveStream, so an edit is felt at the next block. Position projects
+play their tables for a hand-turn sweep (edits take effect at the next Play).
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Iterable
+
+import numpy as np
+from PySide6.QtCore import QObject, Signal
+
+from timeline import playback
+from timeline.devices import Device, Hand, Telemetry, device_names, open_device
+from timeline.errors import HapticTimelineError
+from timeline.model import Project
+
+from .live_stream import LiveStream
+
+
+class TelemetryTap:
+    """Wraps a simulated device's physics so every block's telemetry reaches the scope live."""
+
+    def __init__(self, physics, sink) -> None:
+        self._physics = physics
+        self._sink = sink
+
+    def __getattr__(self, name: str):
+        return getattr(self._physics, name)
+
+    def run_block(self, block):
+        part = self._physics.run_block(block)
+        self._sink(part)
+        return part
+
+    def run_table(self, program, n):
+        part = self._physics.run_table(program, n)
+        self._sink(part)
+        return part
+
+
+class Player(QObject):
+    """Opens the chosen device plugin and plays the document's project on it."""
+
+    telemetry = Signal(object, object)  # angle (rad), torque (N*m) arrays of the newest part
+    position = Signal(float)
+    finished = Signal(str)  # "" or an error sentence
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.device_name = "sim"
+        self.device: Device | None = None
+        self.stream: LiveStream | None = None
+        self.hand = Hand("hold")
+        self._thread: threading.Thread | None = None
+
+    @staticmethod
+    def devices() -> list[str]:
+        """Device plugins found through entry points."""
+        return device_names()
+
+    @property
+    def playing(self) -> bool:
+        return self._thread is not None and self._thread.is_alive()
+
+    def choose_device(self, name: str) -> None:
+        """Use another device from the next Play on."""
+        self.stop()
+        if self.device is not None:
+            self.device.close()
+            self.device = None
+        self.device_name = name
+
+    def _open(self) -> Device:
+        if self.device is None:
+            self.device = open_device(self.device_name)
+            physics = getattr(self.device, "physics", None)
+            if physics is not None and hasattr(physics, "run_block"):
+                self.device.physics = TelemetryTap(physics, self._part)
+        return self.device
+
+    def play(
+        self,
+        project: Project,
+        start: float = 0.0,
+        stop: float | None = None,
+        loop: bool = False,
+        tracks: Iterable[str] | None = None,
+    ) -> None:
+        """Start playing (stops a play already running); errors come back through `finished`."""
+        self.stop()
+        try:
+            device = self._open()
+            if project.axis == "position":
+                program, _ = playback.position_program(project, hand=Hand("turn"))
+                hand, self.stream = Hand("turn"), None
+            else:
+                stop = project.duration if stop is None else stop
+                if stop <= start:
+                    raise HapticTimelineError("nothing to play: the project has no clips there")
+                self.stream = LiveStream(project, device.info.rate, start, stop, loop, tracks)
+                self.stream.on_block = lambda state: self.position.emit(state.position)
+                program, hand = self.stream, self.hand
+        except HapticTimelineError as exc:
+            self.finished.emit(str(exc))
+            return
+        self._thread = threading.Thread(target=self._run, args=(device, program, hand), daemon=True)
+        self._thread.start()
+
+    def _run(self, device: Device, program, hand: Hand) -> None:
+        try:
+            device.play(program, hand)
+        except HapticTimelineError as exc:
+            self.finished.emit(str(exc))
+            return
+        self.finished.emit("")
+
+    def _part(self, part: Telemetry) -> None:
+        if len(part):
+            self.telemetry.emit(np.asarray(part.angle), np.asarray(part.torque))
+
+    def follow(self, project: Project) -> None:
+        """Hand a new project state to the running stream (edit-to-feel starts here)."""
+        if self.stream is not None and self.playing:
+            self.stream.set_project(project)
+
+    def stop(self) -> None:
+        """Stop playing and wait for the device to finish its block."""
+        if self.stream is not None:
+            self.stream.stop_stream()
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
+            self._thread = None
+
+    def close(self) -> None:
+        """Stop and release the device."""
+        self.stop()
+        if self.device is not None:
+            self.device.close()
+            self.device = None

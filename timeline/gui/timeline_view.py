@@ -1,0 +1,255 @@
+"""The timeline view: maps mouse presses on clips to gestures, zooms, scrolls and accepts drops."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtCore import QPointF, Qt, Signal
+from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QWheelEvent
+from PySide6.QtWidgets import QGraphicsView, QMenu
+
+from timeline.model import Track
+
+from .clip_item import ClipItem
+from .document import Document
+from .geometry import Geometry
+from .gestures.amplitude import AmplitudeGesture
+from .gestures.base import Gesture
+from .gestures.fade import FadeGesture
+from .gestures.move import MoveGesture
+from .gestures.palette_drop import PaletteDrop, dropped_tile
+from .gestures.pivot import PivotGesture
+from .gestures.rubber_band import RubberBandGesture
+from .gestures.stretch import StretchGesture
+from .gestures.trim import TrimGesture
+from .snapping import clip_edges, snap
+from .timeline_scene import TimelineScene
+
+SNAP_PX = 8.0
+ZOOM_STEP = 1.25
+
+CURSORS = {
+    "left": Qt.CursorShape.SizeHorCursor,
+    "right": Qt.CursorShape.SizeHorCursor,
+    "fade-in": Qt.CursorShape.PointingHandCursor,
+    "fade-out": Qt.CursorShape.PointingHandCursor,
+    "body": Qt.CursorShape.OpenHandCursor,
+}
+
+
+class TimelineView(QGraphicsView):
+    """Tracks as lanes of clips; every mouse gesture becomes one undoable edit."""
+
+    zoomed = Signal()
+    files_dropped = Signal(list, str, float)  # paths, track id, start
+    context_requested = Signal(QMenu)  # lets the window fill the clip menu
+    gesture_finished = Signal()
+
+    def __init__(self, doc: Document) -> None:
+        self.geometry = Geometry()
+        self._scene = TimelineScene(self.geometry)
+        super().__init__(self._scene)
+        self.doc = doc
+        self.snapping = True
+        self.gesture: Gesture | None = None
+        self.drop: PaletteDrop | None = None
+        self.setAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
+        self.setRenderHint(QPainter.RenderHint.Antialiasing)
+        self.setViewportUpdateMode(QGraphicsView.ViewportUpdateMode.MinimalViewportUpdate)
+        self.setAcceptDrops(True)
+        self.setMouseTracking(True)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOn)
+        doc.changed.connect(self.refresh)
+        doc.selection_changed.connect(self.refresh)
+        self.refresh()
+
+    def scene(self) -> TimelineScene:  # type: ignore[override]
+        return self._scene
+
+    # --- model -> view ---------------------------------------------------------------------
+
+    def refresh(self) -> None:
+        """Redraw from the document."""
+        self.scene().min_width = self.viewport().width()
+        self.scene().sync(self.doc.project, self.doc.selected_clips)
+
+    def clip_items(self) -> list[ClipItem]:
+        return list(self.scene().items_by_clip.values())
+
+    def clip_item(self, clip_id: str) -> ClipItem:
+        return self.scene().items_by_clip[clip_id]
+
+    def track_at(self, y: float) -> Track | None:
+        """The track whose lane is at scene y, or None."""
+        lane = self.geometry.lane_at(y)
+        tracks = self.doc.project.tracks
+        return tracks[lane] if 0 <= lane < len(tracks) else None
+
+    def lane_of(self, track_id: str) -> int:
+        return [t.id for t in self.doc.project.tracks].index(track_id)
+
+    def clip_scene_rect(self, clip_id: str):
+        """A clip's rectangle in scene coordinates (what tests and drops aim at)."""
+        return self.clip_item(clip_id).sceneBoundingRect().adjusted(1, 1, -1, -1)
+
+    def snap(self, u: float, dragged: list[str]) -> float:
+        """Snap an axis position to clip edges or the grid, if snapping is on."""
+        if not self.snapping:
+            return u
+        edges = clip_edges(self.doc.project, dragged)
+        return snap(u, edges, self.scene().grid_step(), self.geometry.u(SNAP_PX))
+
+    # --- zoom and scroll -------------------------------------------------------------------
+
+    def zoom(self, factor: float, anchor_x: float | None = None) -> None:
+        """Zoom the time (or angle) axis about a viewport x (the centre by default)."""
+        if anchor_x is None:
+            anchor_x = self.viewport().width() / 2
+        u = self.geometry.u(self.mapToScene(int(anchor_x), 0).x())
+        self.geometry.zoomed(factor)
+        self.refresh()
+        self.horizontalScrollBar().setValue(int(self.geometry.x(u) - anchor_x))
+        self.zoomed.emit()
+
+    def fit(self) -> None:
+        """Zoom so the whole project fits the width."""
+        duration = self.doc.project.duration or 1.0
+        width = max(100, self.viewport().width() - 40)
+        self.geometry.px_per_unit = width / duration
+        self.refresh()
+        self.horizontalScrollBar().setValue(0)
+        self.zoomed.emit()
+
+    def wheelEvent(self, event: QWheelEvent) -> None:
+        if event.modifiers() & Qt.KeyboardModifier.ControlModifier:
+            steps = event.angleDelta().y() / 120
+            self.zoom(ZOOM_STEP**steps, event.position().x())
+            event.accept()
+            return
+        if event.modifiers() & Qt.KeyboardModifier.ShiftModifier:
+            bar = self.horizontalScrollBar()
+            bar.setValue(bar.value() - event.angleDelta().y())
+            event.accept()
+            return
+        super().wheelEvent(event)
+
+    def scrollContentsBy(self, dx: int, dy: int) -> None:
+        super().scrollContentsBy(dx, dy)
+        self.zoomed.emit()
+
+    # --- mouse -----------------------------------------------------------------------------
+
+    def item_at(self, pos: QPointF) -> ClipItem | None:
+        for item in self.items(pos.toPoint()):
+            if isinstance(item, ClipItem):
+                return item
+        return None
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        if event.button() != Qt.MouseButton.LeftButton:
+            super().mousePressEvent(event)
+            return
+        pos = self.mapToScene(event.position().toPoint())
+        mods = event.modifiers()
+        item = self.item_at(event.position())
+        self.scene().set_cursor(max(0.0, self.geometry.u(pos.x())))
+        if item is None:
+            add = bool(mods & Qt.KeyboardModifier.ControlModifier)
+            self.gesture = RubberBandGesture(self, pos, add)
+            return
+        clip_id = item.clip.id
+        if mods & Qt.KeyboardModifier.ControlModifier:
+            chosen = list(self.doc.selected_clips)
+            chosen.remove(clip_id) if clip_id in chosen else chosen.append(clip_id)
+            self.doc.select_clips(chosen)
+            return
+        if clip_id not in self.doc.selected_clips:
+            self.doc.select_clips([clip_id])
+        self.doc.select_tile(item.clip.tile_id)
+        self.gesture = self._gesture_for(item, pos, mods)
+
+    def _gesture_for(self, item: ClipItem, pos: QPointF, mods) -> Gesture:
+        zone = item.zone(item.mapFromScene(pos))
+        clip_id = item.clip.id
+        shift = bool(mods & Qt.KeyboardModifier.ShiftModifier)
+        if mods & Qt.KeyboardModifier.AltModifier:
+            return PivotGesture(self, pos, clip_id)
+        if zone.startswith("fade-"):
+            return FadeGesture(self, pos, clip_id, zone[5:])
+        if zone in ("left", "right"):
+            cls = StretchGesture if shift else TrimGesture
+            return cls(self, pos, clip_id, zone)
+        if shift:
+            return AmplitudeGesture(self, pos, clip_id)
+        return MoveGesture(self, pos, clip_id)
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        pos = self.mapToScene(event.position().toPoint())
+        if self.gesture is not None:
+            self.gesture.move(pos)
+            return
+        item = self.item_at(event.position())
+        if item is None:
+            self.viewport().unsetCursor()
+        else:
+            self.viewport().setCursor(CURSORS[item.zone(item.mapFromScene(pos))])
+        super().mouseMoveEvent(event)
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        if self.gesture is None:
+            super().mouseReleaseEvent(event)
+            return
+        gesture, self.gesture = self.gesture, None
+        gesture.release(self.mapToScene(event.position().toPoint()))
+        self.gesture_finished.emit()
+
+    def contextMenuEvent(self, event) -> None:
+        item = self.item_at(QPointF(event.pos()))
+        if item is not None and item.clip.id not in self.doc.selected_clips:
+            self.doc.select_clips([item.clip.id])
+        if item is not None:
+            self.scene().set_cursor(self.geometry.u(self.mapToScene(event.pos()).x()))
+        menu = QMenu(self)
+        self.context_requested.emit(menu)
+        if not menu.isEmpty():
+            menu.popup(event.globalPos())
+
+    # --- drops: palette tiles and files ----------------------------------------------------
+
+    def dragEnterEvent(self, event: QDragEnterEvent) -> None:
+        tile_id = dropped_tile(event.mimeData())
+        if tile_id is not None and tile_id in self.doc.project.tiles:
+            self.drop = PaletteDrop(self, tile_id)
+            event.acceptProposedAction()
+        elif event.mimeData().hasUrls():
+            event.acceptProposedAction()
+        else:
+            event.ignore()
+
+    def dragMoveEvent(self, event) -> None:
+        pos = self.mapToScene(event.position().toPoint())
+        if self.drop is not None:
+            self.drop.hover(pos)
+        event.acceptProposedAction()
+
+    def dragLeaveEvent(self, event) -> None:
+        if self.drop is not None:
+            self.drop.finish()
+            self.drop = None
+
+    def dropEvent(self, event: QDropEvent) -> None:
+        pos = self.mapToScene(event.position().toPoint())
+        if self.drop is not None:
+            drop, self.drop = self.drop, None
+            drop.drop(pos)
+            event.acceptProposedAction()
+            return
+        paths = [u.toLocalFile() for u in event.mimeData().urls() if u.isLocalFile()]
+        track = self.track_at(pos.y())
+        if paths:
+            self.files_dropped.emit(
+                [Path(p) for p in paths],
+                track.id if track else "",
+                max(0.0, self.geometry.u(pos.x())),
+            )
+            event.acceptProposedAction()

@@ -1,0 +1,173 @@
+"""Track headers beside the lanes: name, kind colour and label, unit, gain, mute, solo, remove."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QColor
+from PySide6.QtWidgets import (
+    QDoubleSpinBox,
+    QFrame,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QMenu,
+    QPushButton,
+    QScrollArea,
+    QToolButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from timeline import edits
+from timeline.kinds import kinds_for_axis, track_kind
+from timeline.model import Track
+
+from .document import Document
+from .geometry import LANE_HEIGHT
+
+WIDTH = 270
+
+
+class TrackHeader(QFrame):
+    """The header of one track; every change is one edit through the document."""
+
+    def __init__(self, doc: Document, track: Track) -> None:
+        super().__init__()
+        self.doc = doc
+        self.track_id = track.id
+        kind = track_kind(track.kind)
+        self.setFixedHeight(LANE_HEIGHT)
+        self.setObjectName("header")
+        self.setStyleSheet(
+            f"#header {{ border-left: 6px solid {kind.colour}; border-bottom: 1px solid #c8c8c4;"
+            " background: #f7f7f5; }"
+        )
+        self.name = QLineEdit(track.name)
+        self.name.setToolTip("Track name")
+        self.name.editingFinished.connect(self._rename)
+        self.remove = QToolButton()
+        self.remove.setText("✕")
+        self.remove.setToolTip("Remove this track")
+        self.remove.clicked.connect(
+            lambda: doc.apply("remove track", edits.remove_track, self.track_id)
+        )
+        self.kind = QLabel(f"{kind.label}\n{kind.display_unit}")
+        self.kind.setStyleSheet(f"color: {QColor(kind.colour).darker(140).name()};")
+        self.kind.setToolTip(kind.description or kind.label)
+        self.gain = QDoubleSpinBox()
+        self.gain.setRange(-100.0, 100.0)
+        self.gain.setDecimals(2)
+        self.gain.setSingleStep(0.05)
+        self.gain.setPrefix("gain ")
+        self.gain.setMaximumWidth(92)
+        self.gain.setKeyboardTracking(False)
+        self.gain.valueChanged.connect(self._set_gain)
+        self.mute = self._toggle("M", "Mute", "mute")
+        self.solo = self._toggle("S", "Solo: play only soloed tracks", "solo")
+        top = QHBoxLayout()
+        top.addWidget(self.name, 1)
+        top.addWidget(self.remove)
+        bottom = QHBoxLayout()
+        bottom.addWidget(self.kind, 1)
+        bottom.addWidget(self.gain)
+        bottom.addWidget(self.mute)
+        bottom.addWidget(self.solo)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(6, 4, 4, 4)
+        layout.setSpacing(2)
+        layout.addLayout(top)
+        layout.addLayout(bottom)
+        self.show_track(track)
+
+    def _toggle(self, text: str, tip: str, field: str) -> QToolButton:
+        button = QToolButton()
+        button.setText(text)
+        button.setToolTip(tip)
+        button.setCheckable(True)
+        button.clicked.connect(
+            lambda on: self.doc.apply(
+                f"{field} track", edits.set_track, self.track_id, **{field: on}
+            )
+        )
+        return button
+
+    def show_track(self, track: Track) -> None:
+        """Show a track's current settings without emitting edits."""
+        for widget, setter, value in (
+            (self.name, "setText", track.name),
+            (self.gain, "setValue", track.gain),
+            (self.mute, "setChecked", track.mute),
+            (self.solo, "setChecked", track.solo),
+        ):
+            widget.blockSignals(True)
+            if not (widget is self.name and widget.hasFocus()):
+                getattr(widget, setter)(value)
+            widget.blockSignals(False)
+
+    def _rename(self) -> None:
+        track = self.doc.project.track(self.track_id)
+        if self.name.text() != track.name:
+            self.doc.apply("rename track", edits.set_track, self.track_id, name=self.name.text())
+
+    def _set_gain(self, value: float) -> None:
+        self.doc.apply("track gain", edits.set_track, self.track_id, gain=value)
+
+
+class HeaderColumn(QScrollArea):
+    """All track headers, scrolled with the lanes, and an Add track button below them."""
+
+    track_added = Signal(str)
+
+    def __init__(self, doc: Document) -> None:
+        super().__init__()
+        self.doc = doc
+        self.setFixedWidth(WIDTH)
+        self.setWidgetResizable(True)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.setFrameShape(QFrame.Shape.NoFrame)
+        inner = QWidget()
+        self.rows = QVBoxLayout(inner)
+        self.rows.setContentsMargins(0, 0, 0, 0)
+        self.rows.setSpacing(0)
+        self.add = QPushButton("+ Add track")
+        self.add.setToolTip("Add a track of a kind (its meaning: drive, stiffness, damping, ...)")
+        self.add.clicked.connect(self._show_kinds)
+        self.rows.addWidget(self.add)
+        self.rows.addStretch(1)
+        self.setWidget(inner)
+        self.headers: dict[str, TrackHeader] = {}
+        doc.changed.connect(self.refresh)
+        self.refresh()
+
+    def kind_menu(self) -> QMenu:
+        """The menu of track kinds usable on the project's axis."""
+        menu = QMenu(self)
+        for kind_id, kind in kinds_for_axis(self.doc.project.axis).items():
+            action = menu.addAction(f"{kind.label} ({kind.display_unit})")
+            action.triggered.connect(lambda _=False, k=kind_id: self.add_track(k))
+        return menu
+
+    def _show_kinds(self) -> None:
+        self.kind_menu().popup(self.add.mapToGlobal(self.add.rect().bottomLeft()))
+
+    def add_track(self, kind: str) -> str | None:
+        """Add a track of a kind (one undo step)."""
+        track_id = self.doc.apply("add track", edits.add_track, kind)
+        if track_id:
+            self.track_added.emit(track_id)
+        return track_id
+
+    def refresh(self) -> None:
+        """Rebuild headers when tracks come or go; otherwise update them in place."""
+        tracks = self.doc.project.tracks
+        if [t.id for t in tracks] != list(self.headers):
+            for header in self.headers.values():
+                header.deleteLater()
+            self.headers = {}
+            for index, track in enumerate(tracks):
+                header = self.headers[track.id] = TrackHeader(self.doc, track)
+                self.rows.insertWidget(index, header)
+        else:
+            for track in tracks:
+                self.headers[track.id].show_track(track)

@@ -1,0 +1,318 @@
+"""The waveform editor: the selected tile's curve, spline points to drag, add and delete, exact
+values in numeric boxes, and a range that can be dragged (or sent) to the palette."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+from PySide6.QtCore import QMimeData, QPointF, QRectF, Qt
+from PySide6.QtGui import QColor, QDrag, QFont, QMouseEvent, QPainter, QPen, QPolygonF
+from PySide6.QtWidgets import (
+    QDoubleSpinBox,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from timeline.tiles import SplineTile, Tile
+
+from . import tile_edits
+from .clip_shape import tile_samples
+from .document import Document
+from .palette import RANGE_MIME
+
+PICK_PX = 8.0
+MARGIN = 10.0
+
+
+def range_mime(tile_id: str, a: float, b: float) -> QMimeData:
+    """Drag data for a tile range headed to the palette."""
+    mime = QMimeData()
+    mime.setData(RANGE_MIME, json.dumps([tile_id, a, b]).encode())
+    return mime
+
+
+def read_range(mime: QMimeData) -> tuple[str, float, float]:
+    tile_id, a, b = json.loads(bytes(mime.data(RANGE_MIME).data()).decode())
+    return tile_id, float(a), float(b)
+
+
+class Canvas(QWidget):
+    """The curve and points: drag a point, double-click to add one, Shift-drag to select a range."""
+
+    def __init__(self, editor: WaveformEditor) -> None:
+        super().__init__()
+        self.editor = editor
+        self.setMinimumHeight(120)
+        self.setFocusPolicy(Qt.FocusPolicy.ClickFocus)
+        self.dragging: int | None = None
+        self.selecting = False
+        self.merge_key: object = None
+        self.span = (-1.0, 1.0)
+
+    # mapping between tile units and widget pixels
+    def x_of(self, t: float) -> float:
+        return MARGIN + t / self.editor.tile.duration * (self.width() - 2 * MARGIN)
+
+    def t_of(self, x: float) -> float:
+        return (x - MARGIN) / (self.width() - 2 * MARGIN) * self.editor.tile.duration
+
+    def y_of(self, v: float) -> float:
+        lo, hi = self.span
+        return MARGIN + (hi - v) / (hi - lo) * (self.height() - 2 * MARGIN)
+
+    def v_of(self, y: float) -> float:
+        lo, hi = self.span
+        return hi - (y - MARGIN) / (self.height() - 2 * MARGIN) * (hi - lo)
+
+    def point_at(self, pos: QPointF) -> int | None:
+        tile = self.editor.tile
+        if not isinstance(tile, SplineTile):
+            return None
+        for i, (t, v) in enumerate(tile.points):
+            if abs(self.x_of(t) - pos.x()) <= PICK_PX and abs(self.y_of(v) - pos.y()) <= PICK_PX:
+                return i
+        return None
+
+    def paintEvent(self, event) -> None:
+        painter = QPainter(self)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing)
+        painter.fillRect(self.rect(), QColor("#ffffff"))
+        tile = self.editor.tile
+        if tile is None:
+            painter.setPen(QColor("#777777"))
+            painter.drawText(
+                self.rect(),
+                Qt.AlignmentFlag.AlignCenter,
+                "Select a tile or a clip to edit its shape",
+            )
+            return
+        a, b = self.editor.range
+        if b > a:
+            painter.fillRect(
+                QRectF(self.x_of(a), 0, self.x_of(b) - self.x_of(a), self.height()),
+                QColor(56, 117, 215, 45),
+            )
+        data, rate = tile_samples(tile, self.editor.doc.project.rate)
+        peak = max(1.0, float(np.abs(data).max()))
+        self.span = (-peak * 1.1, peak * 1.1)
+        painter.setPen(QPen(QColor("#dddddd"), 1))
+        painter.drawLine(QPointF(0, self.y_of(0)), QPointF(self.width(), self.y_of(0)))
+        count = max(2, self.width() - int(2 * MARGIN))
+        idx = np.linspace(0, len(data) - 1, count)
+        values = np.interp(idx, np.arange(len(data)), data)
+        xs = np.linspace(MARGIN, self.width() - MARGIN, count)
+        painter.setPen(QPen(QColor("#3a6ea5"), 1.5))
+        painter.drawPolyline(
+            QPolygonF([QPointF(x, self.y_of(v)) for x, v in zip(xs, values, strict=True)])
+        )
+        if isinstance(tile, SplineTile):
+            for i, (t, v) in enumerate(tile.points):
+                chosen = i == self.editor.point
+                painter.setBrush(QColor("#d1495b" if chosen else "#ffffff"))
+                painter.setPen(QPen(QColor("#222222"), 1))
+                painter.drawEllipse(QPointF(self.x_of(t), self.y_of(v)), 5, 5)
+        font = QFont()
+        font.setPointSizeF(8.0)
+        painter.setFont(font)
+        painter.setPen(QColor("#444444"))
+        painter.drawText(
+            QPointF(MARGIN + 2, 12),
+            f"{tile.name} · {tile.duration:.4g} {self.editor.doc.project.unit}",
+        )
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        if self.editor.tile is None or event.button() != Qt.MouseButton.LeftButton:
+            return
+        pos = event.position()
+        t = self.t_of(pos.x())
+        if event.modifiers() & Qt.KeyboardModifier.ShiftModifier:
+            self.selecting = True
+            self.editor.set_range(t, t)
+            return
+        index = self.point_at(pos)
+        if index is not None:
+            self.dragging = index
+            self.merge_key = object()
+            self.editor.select_point(index)
+            return
+        a, b = self.editor.range
+        if a <= t <= b and b > a:
+            drag = QDrag(self)
+            drag.setMimeData(range_mime(self.editor.tile_id, a, b))
+            drag.exec(Qt.DropAction.CopyAction)
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        pos = event.position()
+        if self.selecting:
+            self.editor.set_range(self.editor.range[0], self.t_of(pos.x()))
+        elif self.dragging is not None:
+            index = self.editor.doc.apply(
+                "move spline point",
+                _move_keep_index,
+                self.editor.tile_id,
+                self.dragging,
+                self.t_of(pos.x()),
+                self.v_of(pos.y()),
+                merge_key=self.merge_key,
+            )
+            if index is not None:
+                self.editor.select_point(self.dragging)
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        if self.selecting:
+            a, b = sorted(self.editor.range)
+            self.editor.set_range(max(0.0, a), min(self.editor.tile.duration, b))
+        self.selecting = False
+        self.dragging = None
+
+    def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:
+        if self.editor.tile is None:
+            return
+        pos = event.position()
+        index = self.editor.doc.apply(
+            "add spline point",
+            tile_edits.add_point,
+            self.editor.tile_id,
+            self.t_of(pos.x()),
+            self.v_of(pos.y()),
+        )
+        if index is not None:
+            self.editor.select_point(index)
+
+    def keyPressEvent(self, event) -> None:
+        if event.key() in (Qt.Key.Key_Delete, Qt.Key.Key_Backspace):
+            self.editor.delete_point()
+            event.accept()
+            return
+        super().keyPressEvent(event)
+
+
+def _move_keep_index(project, tile_id: str, index: int, t: float, v: float):
+    return tile_edits.move_point(project, tile_id, index, t, v), index
+
+
+class WaveformEditor(QWidget):
+    """Edits the document's selected tile; numeric boxes hold the selected point's exact values."""
+
+    def __init__(self, doc: Document) -> None:
+        super().__init__()
+        self.doc = doc
+        self.tile_id: str | None = None
+        self.point: int | None = None
+        self.range = (0.0, 0.0)
+        self.canvas = Canvas(self)
+        self.t_box = self._box("t ")
+        self.v_box = self._box("value ")
+        self.delete_button = QPushButton("Delete point")
+        self.delete_button.clicked.connect(self.delete_point)
+        self.copy_button = QPushButton("Editable copy")
+        self.copy_button.setToolTip("Make a spline tile through points of this shape, in Scratch")
+        self.copy_button.clicked.connect(self.editable_copy)
+        self.to_palette = QPushButton("Range → palette")
+        self.to_palette.setToolTip(
+            "Add the Shift-dragged range as a new tile (or drag the range onto a tab)"
+        )
+        self.to_palette.clicked.connect(lambda: self.range_to_palette("Scratch"))
+        row = QHBoxLayout()
+        row.addWidget(QLabel("point"))
+        row.addWidget(self.t_box)
+        row.addWidget(self.v_box)
+        row.addWidget(self.delete_button)
+        row.addStretch(1)
+        row.addWidget(self.copy_button)
+        row.addWidget(self.to_palette)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(4, 2, 4, 2)
+        layout.addWidget(self.canvas, 1)
+        layout.addLayout(row)
+        doc.changed.connect(self.refresh)
+        doc.selection_changed.connect(self.refresh)
+        self.refresh()
+
+    @property
+    def tile(self) -> Tile | None:
+        return self.doc.project.tiles.get(self.tile_id) if self.tile_id else None
+
+    def _box(self, prefix: str) -> QDoubleSpinBox:
+        box = QDoubleSpinBox()
+        box.setPrefix(prefix)
+        box.setDecimals(4)
+        box.setRange(-1e6, 1e6)
+        box.setKeyboardTracking(False)
+        box.editingFinished.connect(self._typed)
+        return box
+
+    def refresh(self) -> None:
+        """Follow the document's selected tile."""
+        if self.doc.selected_tile != self.tile_id:
+            self.tile_id = self.doc.selected_tile
+            self.point, self.range = None, (0.0, 0.0)
+        tile = self.tile
+        if (
+            isinstance(tile, SplineTile)
+            and self.point is not None
+            and self.point >= len(tile.points)
+        ):
+            self.point = None
+        editable = isinstance(tile, SplineTile)
+        for widget in (self.t_box, self.v_box, self.delete_button):
+            widget.setEnabled(editable and self.point is not None)
+        self.copy_button.setEnabled(tile is not None)
+        self.to_palette.setEnabled(tile is not None and self.range[1] > self.range[0])
+        if editable and self.point is not None:
+            t, v = tile.points[self.point]
+            for box, value in ((self.t_box, t), (self.v_box, v)):
+                box.blockSignals(True)
+                box.setValue(value)
+                box.blockSignals(False)
+        self.canvas.update()
+
+    def select_point(self, index: int | None) -> None:
+        self.point = index
+        self.refresh()
+
+    def set_range(self, a: float, b: float) -> None:
+        self.range = (a, b)
+        self.refresh()
+
+    def _typed(self) -> None:
+        if self.point is None or self.tile_id is None:
+            return
+        self.doc.apply(
+            "set spline point",
+            tile_edits.move_point,
+            self.tile_id,
+            self.point,
+            self.t_box.value(),
+            self.v_box.value(),
+        )
+
+    def delete_point(self) -> None:
+        """Delete the selected control point."""
+        if (
+            self.point is not None
+            and self.tile_id is not None
+            and self.doc.apply(
+                "delete spline point", tile_edits.remove_point, self.tile_id, self.point
+            )
+        ):
+            self.select_point(None)
+
+    def editable_copy(self) -> None:
+        """Copy the shape into an editable spline tile and edit that."""
+        tile_id = self.doc.apply("editable copy", tile_edits.editable_copy, self.tile_id)
+        if tile_id:
+            self.doc.select_tile(tile_id)
+
+    def range_to_palette(
+        self, tab: str, tile_id: str | None = None, a: float | None = None, b: float | None = None
+    ) -> str | None:
+        """Add the selected range (or the given one) to a palette tab as a new tile."""
+        tile_id = tile_id or self.tile_id
+        a = self.range[0] if a is None else a
+        b = self.range[1] if b is None else b
+        return self.doc.apply("range to palette", tile_edits.range_to_palette, tile_id, a, b, tab)
