@@ -152,9 +152,10 @@ class MainWindow(QMainWindow):
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
         edit.addSeparator()
+        self.split_action = self._action(edit, "Spl&it at cursor", self.split, "Ctrl+I")
         self.clip_actions = [
+            self.split_action,
             self._action(edit, "&Duplicate", self.duplicate, "Ctrl+D"),
-            self._action(edit, "Spl&it at cursor", self.split, "Ctrl+I"),
             self._action(edit, "De&lete", self.delete, QKeySequence.StandardKey.Delete),
             self._action(edit, "In&vert about mirror line", self.invert, "Ctrl+Shift+M"),
             self._action(edit, "Re&verse", self.reverse, "Ctrl+R"),
@@ -199,7 +200,7 @@ class MainWindow(QMainWindow):
     def _update_actions(self) -> None:
         has = bool(self.doc.selected_clips)
         for action in self.clip_actions:
-            action.setEnabled(has)
+            action.setEnabled(has or action is self.split_action)
         history = self.doc.history
         self.undo_action.setText(f"&Undo {history.undo_label}".rstrip())
         self.redo_action.setText(f"&Redo {history.redo_label}".rstrip())
