@@ -55,6 +55,9 @@ class EmulatedKnob:
             channels=p.CH_D if vibrotactile else p.ALL_CHANNELS,
             watchdog_ms=watchdog_ms,
             ramp_ms=round(params.watchdog_ramp * 1000),
+            inertia=0.0 if vibrotactile else params.inertia,
+            viscous=0.0 if vibrotactile else params.viscous,
+            coulomb=0.0 if vibrotactile else params.coulomb,
             firmware=FIRMWARE_VERSION,
         )
         # The sim's own watchdog starts at once: this firmware calls run_idle only to ramp down.

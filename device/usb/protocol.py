@@ -79,7 +79,7 @@ _INFO_MAGIC = b"HI"
 _BLOCK_HEADER = struct.Struct("<2sBBIHH")  # magic, version, mask, seq, n, flags
 _REPORT_HEADER = struct.Struct("<2sBBIIHHIIII")  # magic, version, state, seq, first, n, flags,
 # fill, underruns, overruns, last block seq
-_INFO = struct.Struct("<2sBBBBHIfffffIHHBBHH")
+_INFO = struct.Struct("<2sBBBBHIfffffIHHBBHHfff")
 _LIMITS = struct.Struct("<fHH")  # max torque, watchdog ms, reserved
 BLOCK_HEADER_SIZE = _BLOCK_HEADER.size
 REPORT_HEADER_SIZE = _REPORT_HEADER.size
@@ -125,6 +125,9 @@ class InfoPayload:
     channels: int  # mask of the coefficients the device renders
     watchdog_ms: int
     ramp_ms: int
+    inertia: float = 0.0  # kg*m^2 of the rotor and knob (0 when unknown)
+    viscous: float = 0.0  # N*m*s/rad of the device's own damping
+    coulomb: float = 0.0  # N*m of the device's own Coulomb friction
     firmware: tuple[int, int, int] = (1, 0, 0)
     protocol_version: int = PROTOCOL_VERSION
 
@@ -157,6 +160,9 @@ def encode_info(info: InfoPayload) -> bytes:
         0,
         info.watchdog_ms,
         info.ramp_ms,
+        info.inertia,
+        info.viscous,
+        info.coulomb,
     )
 
 
@@ -165,34 +171,16 @@ def decode_info(data: bytes) -> InfoPayload:
     data = bytes(data)
     if len(data) != INFO_SIZE:
         raise ProtocolError(f"device info is {len(data)} bytes, expected {INFO_SIZE}")
-    (
-        magic,
-        version,
-        kind,
-        major,
-        minor,
-        patch,
-        rate,
-        tmax,
-        kmax,
-        bmax,
-        mmax,
-        res,
-        cap,
-        max_block,
-        report,
-        channels,
-        _,
-        watchdog,
-        ramp,
-    ) = _INFO.unpack(data)
+    magic, version, kind, major, minor, patch, rate, *rest = _INFO.unpack(data)
+    tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, _, watchdog, ramp = rest[:12]
+    inertia, viscous, coulomb = rest[12:]
     if magic != _INFO_MAGIC:
         raise ProtocolError("device info does not start with the protocol's magic bytes")
     if version != PROTOCOL_VERSION:
         raise ProtocolError(f"device speaks protocol version {version}, this host speaks 1")
     if kind not in KINDS:
         raise ProtocolError(f"device reports an unknown kind {kind}")
-    limits = (tmax, kmax, bmax, mmax, res)
+    limits = (tmax, kmax, bmax, mmax, res, inertia, viscous, coulomb)
     if not all(np.isfinite(x) and x >= 0 for x in limits) or tmax <= 0 or rate <= 0:
         raise ProtocolError("device info has a non-positive or non-finite rate or limit")
     if not channels & CH_D or channels & ~ALL_CHANNELS:
@@ -200,22 +188,9 @@ def decode_info(data: bytes) -> InfoPayload:
     if max_block <= 0 or report <= 0 or cap < max_block:
         raise ProtocolError("device info has an invalid block, report or buffer size")
     return InfoPayload(
-        kind,
-        rate,
-        tmax,
-        kmax,
-        bmax,
-        mmax,
-        res,
-        cap,
-        max_block,
-        report,
-        channels,
-        watchdog,
-        ramp,
-        (major, minor, patch),
-        version,
-    )
+        kind, rate, tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, watchdog, ramp,
+        inertia, viscous, coulomb, (major, minor, patch), version,
+    )  # fmt: skip
 
 
 def encode_limits(max_torque: float, watchdog_ms: int) -> bytes:

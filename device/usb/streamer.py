@@ -11,6 +11,8 @@ from collections.abc import Iterable, Iterator
 
 import numpy as np
 
+from device.sim.params import KnobParams
+from device.sim.stability import stability_flags
 from device.usb import protocol as p
 from device.usb.errors import DeviceFault, DeviceUnderrun, UsbDeviceError
 from device.usb.link import Link
@@ -81,6 +83,11 @@ class Stream:
         self.block_n = max(1, min(round(block_s * self.rate), info.max_block))
         lead = max(round(lead_s * self.rate), 2 * self.block_n)
         self.lead_n = min(lead, info.buffer_capacity)
+        if self.lead_n - self.block_n < info.report_samples:
+            raise UsbDeviceError(
+                f"the USB haptic device's buffer ({info.buffer_capacity} samples) cannot hold a "
+                f"telemetry report ({info.report_samples}) plus a block ({self.block_n})"
+            )
         self.zeroed = 0
         self.clamped = 0
         self._sent: list[np.ndarray] = []
@@ -107,7 +114,7 @@ class Stream:
             self._check(report, end)
             fill, since = report.buffer_fill, 0
             if progress:
-                progress(self._n_received / self.rate, total)
+                progress(min(self._n_received, self._n_sent) / self.rate, total)
 
     def _safe(self, rows: np.ndarray) -> np.ndarray:
         safe, zeroed, clamped = p.make_safe(rows, self.limits)
@@ -151,24 +158,36 @@ class Stream:
         if len(rows) < n:
             raise UsbDeviceError(f"the USB haptic device reported {len(rows)} of {n} samples")
         angle, velocity, torque = (rows[:, i].astype(np.float64) for i in range(3))
-        # Work done on the knob, from the encoder: torque held over each period times the step.
-        steps = np.diff(angle, append=angle[-1] if n else angle)
-        energy = np.cumsum(torque * steps)
         layers = {
             name: sent[:, i].astype(np.float64) for i, name in enumerate(p.channel_names(self.mask))
         }
-        return Telemetry(
-            float(self.rate),
-            np.arange(n) * (1.0 / self.rate),
-            angle,
-            velocity,
-            torque,
-            energy,
-            np.abs(torque) >= self.limits[0],
-            layers,
-            (),
-            tuple(self.warnings()),
-        )
+        time = np.arange(n) * (1.0 / self.rate)
+        saturated = np.abs(torque) >= self.limits[0]
+        energy = self._energy(angle, torque)
+        flags = self._flags(time, layers)
+        return Telemetry(float(self.rate), time, angle, velocity, torque, energy, saturated,
+                         layers, flags, tuple(self.warnings()))  # fmt: skip
+
+    def _energy(self, angle: np.ndarray, torque: np.ndarray) -> np.ndarray:
+        """Energy the device put in (J), as the sim counts it, estimated from the encoder.
+
+        Motor work (torque held over each period times the encoder's step) minus what the
+        device's own viscous and Coulomb friction (from GET_INFO) dissipated over that step.
+        """
+        info = self.link.info
+        step = np.diff(angle, append=angle[-1:])
+        lost = info.viscous * step * step * self.rate + info.coulomb * np.abs(step)
+        return np.cumsum(torque * step - lost)
+
+    def _flags(self, time: np.ndarray, layers: dict[str, np.ndarray]) -> tuple:
+        """The sim's stability rules applied to the coefficients sent (kinesthetic devices)."""
+        info = self.link.info
+        if "k" not in layers or info.inertia <= 0:
+            return ()
+        params = KnobParams(rate=self.rate, quantum=info.encoder_resolution,
+                            max_torque=float(self.limits[0]), inertia=info.inertia,
+                            viscous=info.viscous, coulomb=info.coulomb)  # fmt: skip
+        return tuple(stability_flags(time, layers["k"], layers["b"], layers.get("m"), params))
 
     def warnings(self) -> list[str]:
         """Sentences about values the host had to change before sending them."""
