@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 from PySide6.QtCore import QPointF, QRectF, Qt
-from PySide6.QtGui import QBrush, QColor, QFont, QPainter, QPainterPath, QPen, QPolygonF
+from PySide6.QtGui import QBrush, QColor, QFont, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import QGraphicsItem, QStyleOptionGraphicsItem, QWidget
 
 from timeline.fades import fade_in_gain
@@ -37,6 +37,7 @@ class ClipItem(QGraphicsItem):
         self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
         self._w = 1.0
         self._h = 1.0
+        self._key: tuple = ()
 
     def update_from(
         self,
@@ -52,21 +53,17 @@ class ClipItem(QGraphicsItem):
         g = self.geometry
         w = max(2.0, g.x(clip.duration))
         h = g.lane_height - 2 * CLIP_MARGIN
-        same = (
-            clip == self.clip
-            and tile is self.tile
-            and self.selected == selected
-            and (w, h) == (self._w, self._h)
-            and self.colour.name() == QColor(colour).name()
-        )
+        key = (clip, id(tile), lane, colour, selected, w, h, g.px_per_unit, rate)
+        if key == self._key:
+            return  # nothing to do: no Qt calls for the clips an edit did not touch
+        self._key = key
         if (w, h) != (self._w, self._h):
             self.prepareGeometryChange()
         self.clip, self.tile, self.track_id, self.rate = clip, tile, track_id, rate
         self.colour, self.selected, self._w, self._h = QColor(colour), selected, w, h
         self.setPos(g.x(clip.start), g.lane_top(lane) + CLIP_MARGIN)
         self.setZValue(2 if selected else 1)
-        if not same:
-            self.update()
+        self.update()
 
     # --- geometry and hit zones -----------------------------------------------------------
 
@@ -157,13 +154,14 @@ class ClipItem(QGraphicsItem):
             if length >= 1:
                 xs = np.linspace(0.0, 1.0, 24)
                 gain = fade_in_gain(xs, fade.shape)
-                path = QPainterPath()
-                for i, (x, g) in enumerate(zip(xs, gain, strict=True)):
-                    px = x * length if which == "in" else self._w - x * length
-                    point = QPointF(px, self._h * (1 - g))
-                    path.moveTo(point) if i == 0 else path.lineTo(point)
+                points = [
+                    QPointF(
+                        x * length if which == "in" else self._w - x * length, self._h * (1 - g)
+                    )
+                    for x, g in zip(xs, gain, strict=True)
+                ]
                 painter.setBrush(Qt.BrushStyle.NoBrush)
-                painter.drawPath(path)
+                painter.drawPolyline(QPolygonF(points))
             handle = self.fade_handle(which)
             painter.setBrush(QBrush(QColor("#ffffff")))
             painter.drawRect(QRectF(handle.x() - 4, 0, 8, 8))
@@ -183,7 +181,7 @@ class ClipItem(QGraphicsItem):
         font.setPointSizeF(8.0)
         painter.setFont(font)
         painter.setPen(QColor("#111111"))
-        rect = QRectF(10, 9, max(0.0, self._w - 20), 14)
+        rect = QRectF(6, 12, max(0.0, self._w - 12), 14)
         text = painter.fontMetrics().elidedText(
             "  ".join(parts), Qt.TextElideMode.ElideRight, int(rect.width())
         )

@@ -195,7 +195,6 @@ class MainWindow(QMainWindow):
         name = self.doc.path.name if self.doc.path else "untitled"
         star = "*" if self.doc.modified else ""
         self.setWindowTitle(f"{star}{name} — {APP_NAME}")
-        self.setWindowModified(self.doc.modified)
 
     def _update_actions(self) -> None:
         has = bool(self.doc.selected_clips)

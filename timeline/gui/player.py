@@ -7,10 +7,11 @@ play their tables for a hand-turn sweep (edits take effect at the next Play).
 from __future__ import annotations
 
 import threading
+from collections import deque
 from collections.abc import Iterable
 
 import numpy as np
-from PySide6.QtCore import QObject, Signal
+from PySide6.QtCore import QObject, QTimer, Signal
 
 from timeline import playback
 from timeline.devices import Device, Hand, Telemetry, device_names, open_device
@@ -42,7 +43,11 @@ class TelemetryTap:
 
 
 class Player(QObject):
-    """Opens the chosen device plugin and plays the document's project on it."""
+    """Opens the chosen device plugin and plays the document's project on it.
+
+    The playing thread never touches Qt: it leaves telemetry in a queue that a GUI-thread timer
+    drains (the Friture pattern), and the signals below are emitted from that timer.
+    """
 
     telemetry = Signal(object, object)  # angle (rad), torque (N*m) arrays of the newest part
     position = Signal(float)
@@ -55,6 +60,12 @@ class Player(QObject):
         self.stream: LiveStream | None = None
         self.hand = Hand("hold")
         self._thread: threading.Thread | None = None
+        self._parts: deque[Telemetry] = deque(maxlen=200)
+        self._position: float | None = None
+        self._outcome: str | None = None
+        self._poll = QTimer(self)
+        self._poll.setInterval(33)
+        self._poll.timeout.connect(self._drain)
 
     @staticmethod
     def devices() -> list[str]:
@@ -101,25 +112,45 @@ class Player(QObject):
                 if stop <= start:
                     raise HapticTimelineError("nothing to play: the project has no clips there")
                 self.stream = LiveStream(project, device.info.rate, start, stop, loop, tracks)
-                self.stream.on_block = lambda state: self.position.emit(state.position)
+                self.stream.on_block = self._at
                 program, hand = self.stream, self.hand
         except HapticTimelineError as exc:
             self.finished.emit(str(exc))
             return
+        self._outcome = None
         self._thread = threading.Thread(target=self._run, args=(device, program, hand), daemon=True)
         self._thread.start()
+        self._poll.start()
 
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:
             device.play(program, hand)
         except HapticTimelineError as exc:
-            self.finished.emit(str(exc))
+            self._outcome = str(exc)
             return
-        self.finished.emit("")
+        self._outcome = ""
+
+    def _at(self, state) -> None:
+        self._position = state.position
 
     def _part(self, part: Telemetry) -> None:
         if len(part):
-            self.telemetry.emit(np.asarray(part.angle), np.asarray(part.torque))
+            self._parts.append(part)
+
+    def _drain(self) -> None:
+        """GUI thread: pass on what the playing thread left behind."""
+        parts = [self._parts.popleft() for _ in range(len(self._parts))]
+        if parts:
+            angle = np.concatenate([p.angle for p in parts])
+            torque = np.concatenate([p.torque for p in parts])
+            self.telemetry.emit(angle, torque)
+        if self._position is not None:
+            self.position.emit(self._position)
+            self._position = None
+        if self._outcome is not None and not self.playing:
+            outcome, self._outcome = self._outcome, None
+            self._poll.stop()
+            self.finished.emit(outcome)
 
     def follow(self, project: Project) -> None:
         """Hand a new project state to the running stream (edit-to-feel starts here)."""

@@ -55,3 +55,6 @@ class Scope(QWidget):
             painter.setPen(QColor(colour))
             last = values[-1] if values.size else 0.0
             painter.drawText(QPointF(6, top + 13), f"{name} {last:+.2f}{unit}  (±{peak:.2f})")
+        if not self.tau.size:
+            painter.setPen(QColor("#8a949e"))
+            painter.drawText(self.rect(), 0x84, "Press Space to play on the device and feel it")

@@ -1,0 +1,51 @@
+"""Playing on the sim follows edits live; screenshots of the examples for people to look at."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from PySide6.QtCore import Qt
+from PySide6.QtTest import QTest
+
+from timeline import edits, projectfile
+
+ROOT = Path(__file__).resolve().parents[2]
+OUT = ROOT / "test-output" / "gui"
+
+
+def test_space_plays_on_the_sim_and_the_scope_fills(window, qtbot):
+    win = window
+    win.transport.loop.setChecked(True)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert win.player.playing
+    qtbot.waitUntil(lambda: win.transport.scope.tau.size > 20, timeout=5000)
+    stream = win.player.stream
+    version = stream.state.version
+    win.doc.apply("gain", edits.set_clip_gain, win.ids["c1"], 0.5)
+    assert stream.state.version == version + 1
+    qtbot.waitUntil(lambda: stream.state.live_version == version + 1, timeout=2000)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert not win.player.playing
+
+
+@pytest.mark.parametrize("name", ["fan_knob", "notification_buzz"])
+def test_screenshot(qtbot, name):
+    from timeline.gui.main_window import MainWindow
+
+    win = MainWindow(
+        projectfile.load(ROOT / "projects" / f"{name}.htl"), ROOT / "projects" / f"{name}.htl"
+    )
+    qtbot.addWidget(win)
+    win.resize(1400, 860)
+    win.show()
+    qtbot.waitExposed(win)
+    win.view.fit()
+    first = win.doc.project.tracks[0].clips[0]
+    win.doc.select_clips([first.id])
+    win.doc.select_tile(first.tile_id)
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / f"{name}.png"
+    assert win.grab().save(str(path))
+    assert path.stat().st_size > 10_000
+    win.player.close()
