@@ -185,4 +185,10 @@ class ClipItem(QGraphicsItem):
         text = painter.fontMetrics().elidedText(
             "  ".join(parts), Qt.TextElideMode.ElideRight, int(rect.width())
         )
+        if text:
+            width = painter.fontMetrics().horizontalAdvance(text) + 6
+            painter.fillRect(
+                QRectF(rect.left() - 3, rect.top(), width, rect.height()),
+                QColor(255, 255, 255, 190),
+            )
         painter.drawText(rect, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter, text)
