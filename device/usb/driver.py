@@ -185,7 +185,7 @@ def _describe(dev: Any) -> str:
     where = f"usb {dev.idVendor:04x}:{dev.idProduct:04x} on bus {dev.bus} address {dev.address}"
     try:
         link = Link(dev)
-    except (UsbDeviceError, p.ProtocolError) as exc:
+    except UsbDeviceError as exc:
         return f"{where} (cannot open: {exc})"
     try:
         w = link.info

@@ -70,18 +70,17 @@ class Link:
         self.dev = dev
         self.timeout_ms = timeout_ms
         self._call("opening the device", self._configure)
-        self.info = p.decode_info(
-            self._call(
-                "reading the device info",
-                dev.ctrl_transfer,
-                p.REQUEST_TYPE_IN,
-                p.REQ_GET_INFO,
-                0,
-                p.INTERFACE_NUMBER,
-                p.INFO_SIZE,
-                timeout_ms,
-            )
+        raw = self._call(
+            "reading the device info",
+            dev.ctrl_transfer,
+            p.REQUEST_TYPE_IN,
+            p.REQ_GET_INFO,
+            0,
+            p.INTERFACE_NUMBER,
+            p.INFO_SIZE,
+            timeout_ms,
         )
+        self.info = _decoded(p.decode_info, raw, "device info")
 
     @classmethod
     def open(
@@ -131,7 +130,7 @@ class Link:
         data = self._call(
             "reading telemetry", self.dev.read, p.EP_IN, size, self.timeout_ms, ep=p.EP_IN
         )
-        return p.decode_report(data)
+        return _decoded(p.decode_report, data, "a telemetry report")
 
     def abort(self) -> None:
         """After a failure: STOP, then clear halted endpoints; ignore a device that is gone."""
@@ -190,6 +189,15 @@ def _usb_error(exc: usb.core.USBError, what: str, ep: int) -> UsbDeviceError:
             "as a user who may"
         )
     return UsbDeviceError(f"the USB transfer failed while {what}: {exc.strerror or exc}")
+
+
+def _decoded(decode: Callable[[bytes], T], data: bytes, what: str) -> T:
+    try:
+        return decode(data)
+    except p.ProtocolError as exc:
+        raise UsbDeviceError(
+            f"the USB haptic device sent {what} that breaks the protocol ({exc})"
+        ) from None
 
 
 def _serial(dev: usb.core.Device) -> str | None:

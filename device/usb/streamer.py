@@ -127,8 +127,9 @@ class Stream:
 
     def _check(self, report: p.Report, end: bool) -> None:
         if report.first_sample != self._n_received:
-            raise p.ProtocolError(
-                f"telemetry jumped from sample {self._n_received} to {report.first_sample}"
+            raise UsbDeviceError(
+                f"the USB haptic device's telemetry jumped from sample {self._n_received} "
+                f"to {report.first_sample}"
             )
         self._received.append(report.samples)
         self._n_received += len(report.samples)

@@ -249,3 +249,11 @@ def test_a_position_program_is_refused_and_an_empty_one_plays_nothing() -> None:
     with pytest.raises(DeviceError, match="time-mode coefficient blocks"):
         knob.play(PositionProgram(table, 1.0))
     assert len(knob.play([])) == 0 and emulated.wire_out == []
+
+
+def test_a_report_that_breaks_the_protocol_stops_the_device(monkeypatch) -> None:
+    knob, emulated = rig()
+    monkeypatch.setattr(emulated.knob, "send", lambda: b"HT\x07" + bytes(40))
+    with pytest.raises(UsbDeviceError, match=r"sent a telemetry report that breaks the protocol"):
+        knob.play(blocks_of(2000, **STEADY), Hand("hold"))
+    assert emulated.knob.state == p.STATE_RAMPING
