@@ -27,15 +27,17 @@ def render_clip(
         return np.zeros(0)
     pos0 = t_first - clip.start  # offset of the first sample into the clip
     values = _source_values(clip, tile, pos0, 1.0 / rate, n, quality)
-    if clip.scale != 1.0:
-        values = values * clip.scale
-    if clip.offset != 0.0:
-        values = values + clip.offset
-    if clip.gain != 1.0:
-        values = values * clip.gain
-    env = fade_envelope(pos0 + np.arange(n) / rate, clip.duration, clip.fade_in, clip.fade_out)
-    if env is not None:
-        values = values * env
+    # Overflow shows as inf, which the mixer reports as one clear error.
+    with np.errstate(over="ignore", invalid="ignore"):
+        if clip.scale != 1.0:
+            values = values * clip.scale
+        if clip.offset != 0.0:
+            values = values + clip.offset
+        if clip.gain != 1.0:
+            values = values * clip.gain
+        env = fade_envelope(pos0 + np.arange(n) / rate, clip.duration, clip.fade_in, clip.fade_out)
+        if env is not None:
+            values = values * env
     return values
 
 

@@ -12,7 +12,7 @@ TWO_PI = 2.0 * np.pi
 
 @dataclass(frozen=True)
 class GeneratorSpec:
-    """A generator's name, its parameters with defaults, and its function f(u, duration, **params)."""
+    """A generator's name, parameter defaults, and function f(u, duration, **params)."""
 
     name: str
     defaults: Mapping[str, float]
@@ -91,13 +91,13 @@ def _noise(u, duration, seed, bandwidth, amplitude):
 
 
 def _detents(u, duration, count, amplitude, phase):
-    """A detent series: restoring torque -sin with `count` stable rest points spaced over the tile."""
+    """A detent series: restoring torque -sin with `count` stable rest points over the tile."""
     period = duration / count
     return -amplitude * np.sin(TWO_PI * (u - phase * period) / period)
 
 
 def _wall(u, duration, edge, width, direction):
-    """A wall: zero before `edge` (fraction of the tile), then a spring pushing back over `width`."""
+    """A wall: zero before `edge` (fraction of the tile), then a spring over `width`."""
     depth = np.clip((u / duration - edge) / max(width, 1e-300), 0.0, 1.0)
     return -np.sign(direction) * depth if direction else -depth
 

@@ -196,6 +196,7 @@ class Mixer:
         for c in contributions:
             for b in range(c.i0 // BLOCK, (c.i1 - 1) // BLOCK + 1):
                 per_block.setdefault(b, []).append(c)
+        rendered: dict[int, np.ndarray] = {}  # per call, so a clip too big to cache renders once
         for b, members in per_block.items():
             lo, hi = b * BLOCK, min((b + 1) * BLOCK, n)
             block_key = (
@@ -213,7 +214,9 @@ class Mixer:
             self.stats.block_sums += 1
             acc = out[lo:hi]
             for c in members:
-                values = self._clip_values(c, key, q)
+                values = rendered.get(id(c))
+                if values is None:
+                    values = rendered[id(c)] = self._clip_values(c, key, q)
                 a, z = max(c.i0, lo), min(c.i1, hi)
                 segment = values[a - c.i0 : z - c.i0]
                 if c.scale == 1.0:

@@ -16,7 +16,7 @@ DEVICES = "haptic_timeline.devices"
 
 @cache
 def load_group(group: str) -> dict[str, Any]:
-    """Load every plugin registered under an entry-point group, skipping broken ones with a warning."""
+    """Load every plugin of an entry-point group, skipping broken ones with a warning."""
     found: dict[str, Any] = {}
     for ep in sorted(entry_points(group=group), key=lambda e: e.name):
         try:

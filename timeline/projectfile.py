@@ -343,7 +343,8 @@ def from_json(doc: Any) -> Project:
         raise _Bad("its schema version is missing")
     if version > SCHEMA:
         raise _Bad(
-            f"it was written by a newer haptic-timeline (schema {version}; this one reads up to {SCHEMA})"
+            f"it was written by a newer haptic-timeline (schema {version}; "
+            f"this one reads up to {SCHEMA})"
         )
     while version < SCHEMA:
         doc = MIGRATIONS[version](doc)

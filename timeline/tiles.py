@@ -41,7 +41,7 @@ def _evaluate_decimated(fn, u0: float, du: float, n: int, decimation: int) -> np
 
 @dataclass(frozen=True, eq=False)
 class SampledTile:
-    """An array of samples at a rate (imports, merges, freehand drawing); sample k sits at k/rate."""
+    """Samples at a rate (imports, merges, freehand drawing); sample k sits at k/rate."""
 
     data: np.ndarray
     rate: float
