@@ -31,10 +31,20 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _with_default_verb(argv: list[str], verbs: set[str]) -> list[str]:
+    """`haptic-timeline` and `haptic-timeline PROJECT` open the editor, like `edit`."""
+    if not argv:
+        return ["edit"]
+    if argv[0] not in verbs and not argv[0].startswith("-"):
+        return ["edit", *argv]
+    return argv
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one verb; a user's mistake prints one sentence on stderr and returns non-zero."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    verbs = set(parser._subparsers._group_actions[0].choices)  # type: ignore[union-attr]
+    args = parser.parse_args(_with_default_verb(sys.argv[1:] if argv is None else argv, verbs))
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
