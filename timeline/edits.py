@@ -113,6 +113,19 @@ def add_tile(project: Project, tile: Tile, tab: str = "Scratch") -> tuple[Projec
     return replace(project, tiles=MappingProxyType(tiles), palette=palette), tile_id
 
 
+def replace_tile(project: Project, tile_id: str, tile: Tile) -> Project:
+    """Put a new shape under a tile id; refused if a clip would play past the new end."""
+    project.tile(tile_id)
+    for track in project.tracks:
+        for clip in track.clips:
+            if clip.tile_id == tile_id and clip.source_out > tile.duration * (1 + 1e-9):
+                raise EditError(
+                    f"a clip plays this tile up to {clip.source_out:.4g}; it cannot end at "
+                    f"{tile.duration:.4g}"
+                )
+    return replace(project, tiles=MappingProxyType({**project.tiles, tile_id: tile}))
+
+
 def remove_tile(project: Project, tile_id: str) -> Project:
     """Remove a tile that no clip uses."""
     project.tile(tile_id)

@@ -17,9 +17,9 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from timeline import tile_edits
 from timeline.tiles import SplineTile, Tile
 
-from . import tile_edits
 from .clip_shape import tile_samples
 from .document import Document
 from .palette import RANGE_MIME

@@ -1,38 +1,20 @@
-"""Edits of a tile's shape from the waveform editor: pure functions like timeline.edits.
-
-(Replacing a tile in the library is general enough to belong in timeline.edits; it lives here
-until the core has it.)
-"""
+"""Edits of a tile's shape (the waveform editor's): pure functions like timeline.edits."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import replace
-from types import MappingProxyType
 
 import numpy as np
 
 from timeline import edits
+from timeline.edits import replace_tile
 from timeline.errors import EditError
 from timeline.model import Project
+from timeline.quality import preset
 from timeline.tiles import SampledTile, SplineTile, Tile
 
-from .clip_shape import tile_samples
-
 EDITABLE_POINTS = 12
-
-
-def replace_tile(project: Project, tile_id: str, tile: Tile) -> Project:
-    """Put a new shape under a tile id; refused if a clip would play past the new end."""
-    project.tile(tile_id)
-    for track in project.tracks:
-        for clip in track.clips:
-            if clip.tile_id == tile_id and clip.source_out > tile.duration * (1 + 1e-9):
-                raise EditError(
-                    f"a clip plays this tile up to {clip.source_out:.4g}; it cannot end at "
-                    f"{tile.duration:.4g}"
-                )
-    return replace(project, tiles=MappingProxyType({**project.tiles, tile_id: tile}))
 
 
 def _spline(project: Project, tile_id: str) -> SplineTile:
@@ -82,8 +64,10 @@ def editable_copy(project: Project, tile_id: str, tab: str = "Scratch") -> tuple
     """A spline tile through EDITABLE_POINTS samples of any tile, added to a palette tab."""
     tile = project.tile(tile_id)
     ts = np.linspace(0.0, tile.duration, EDITABLE_POINTS)
-    data, rate = tile_samples(tile, project.rate)
-    vs = np.interp(ts * rate, np.arange(len(data)), data)
+    if isinstance(tile, SampledTile):
+        vs = np.interp(ts * tile.rate, np.arange(len(tile.data)), tile.data)
+    else:
+        vs = tile.evaluate(ts)
     points = tuple((float(t), float(v)) for t, v in zip(ts, vs, strict=True))
     return edits.add_tile(
         project, SplineTile(points, tile.duration, "natural", f"{tile.name} (edit)"), tab
@@ -103,7 +87,11 @@ def range_tile(tile: Tile, a: float, b: float, rate: float) -> Tile:
             (b - a, float(tile.evaluate(np.array([b]))[0])),
         ]
         return SplineTile(tuple(ends[:1] + inside + ends[1:]), b - a, tile.method, name)
-    data, data_rate = tile_samples(tile, rate)
+    if isinstance(tile, SampledTile):
+        data, data_rate = tile.data, tile.rate
+    else:
+        n = max(1, math.ceil(tile.duration * rate))
+        data, data_rate = tile.render(0.0, 1.0 / rate, n, preset("exact")), rate
     return SampledTile(
         data[int(a * data_rate) : max(int(a * data_rate) + 1, int(b * data_rate))], data_rate, name
     )
