@@ -64,14 +64,22 @@ def export_project(
     path = Path(path)
     fmt = writer_for(path)
     if fmt.writes == "layers":
-        source: Any = project_layers(project, rate)
-    else:
-        if project.duration <= 0:
-            raise FormatError("the project has no clips to export")
-        source = project
-        if rate is not None:
-            options["rate"] = rate
-    _write(fmt, source, path, options)
+        write_layers(project_layers(project, rate), path, **options)
+        return
+    if project.duration <= 0:
+        raise FormatError("the project has no clips to export")
+    if rate is not None:
+        options["rate"] = rate
+    _write(fmt, project, path, options)
+
+
+def write_layers(layers: Layers, path: str | os.PathLike, **options: Any) -> None:
+    """Write rendered layers to a table or audio file chosen by its extension (.csv, .wav, ...)."""
+    path = Path(path)
+    fmt = writer_for(path)
+    if fmt.writes != "layers":
+        raise FormatError(f"rendered layers cannot be written as {fmt.name}; use export")
+    _write(fmt, layers, path, options)
 
 
 def export_tile(

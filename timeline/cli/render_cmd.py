@@ -1,22 +1,39 @@
-"""`haptic-timeline render PROJECT -o OUT`: the mixed layers to CSV, NPZ or WAV."""
+"""`haptic-timeline render PROJECT -o OUT`: the mixed layers to CSV, WAV, MAT or NPZ."""
 
 from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
+
+import numpy as np
 
 from timeline.cli.options import add_range_options, parse_tracks
-from timeline.layers_io import write_layers
+from timeline.errors import HapticTimelineError
+from timeline.exporting import write_atomically, write_layers
+from timeline.formats import Layers
 from timeline.mixer import render
 from timeline.projectfile import load
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("render", help="render the mixed layers to .csv, .npz or .wav")
+    p = sub.add_parser("render", help="render the mixed layers to .csv, .wav, .mat or .npz")
     p.add_argument("project", help="a .htl project file")
-    p.add_argument("-o", "--output", required=True, help="OUT.csv, OUT.npz or OUT.wav")
+    p.add_argument("-o", "--output", required=True, help="OUT.csv, OUT.wav, OUT.mat or OUT.npz")
     add_range_options(p)
     p.set_defaults(func=run)
+
+
+def _write_npz(layers: Layers, path: Path) -> None:
+    axis = "time" if layers.axis == "time" else "angle"
+    positions = layers.start + np.arange(layers.length) / layers.rate
+    columns = {k: np.asarray(v) for k, v in layers.columns.items()}
+
+    def write(tmp: Path) -> None:
+        with open(tmp, "wb") as f:
+            np.savez(f, **{axis: positions}, rate=np.float64(layers.rate), **columns)
+
+    write_atomically(path, write)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -24,11 +41,17 @@ def run(args: argparse.Namespace) -> int:
     rate = project.rate if args.rate is None else args.rate
     start = args.start
     stop = project.duration if args.stop is None else args.stop
-    layers = render(project, start, stop, rate, args.quality, parse_tracks(args.tracks))
-    write_layers(layers, args.output, start, rate, project.axis)
-    n = len(next(iter(layers.values()))) if layers else 0
+    columns = render(project, start, stop, rate, args.quality, parse_tracks(args.tracks))
+    if not columns:
+        raise HapticTimelineError("the project has no layers to render (no clips, or all muted)")
+    layers = Layers(columns, rate, start, project.axis)
+    output = Path(args.output)
+    if output.suffix.lower() == ".npz":
+        _write_npz(layers, output)
+    else:
+        write_layers(layers, output)
     print(
-        f"rendered {', '.join(layers) or 'no layers'}: {n} samples at {rate:g}/{project.unit} "
+        f"rendered {', '.join(columns)}: {layers.length} samples at {rate:g}/{project.unit} "
         f"({start:g} to {stop:g} {project.unit}, {args.quality}) -> {args.output}",
         file=sys.stderr,
     )
