@@ -31,6 +31,21 @@ TELEMETRY_COLUMNS = ("time", "angle", "velocity", "torque")
 Progress = Callable[[float, float | None], None]  # (seconds played, total seconds or None)
 
 
+@dataclass(frozen=True)
+class LiveTelemetry:
+    """A piece of telemetry as it arrives while playing (for a live scope)."""
+
+    time: np.ndarray  # s since play start
+    angle: np.ndarray  # rad from the anchor
+    torque: np.ndarray  # N*m applied
+
+    def __len__(self) -> int:
+        return len(self.time)
+
+
+Monitor = Callable[[LiveTelemetry], None]
+
+
 class DeviceError(HapticTimelineError):
     """A device is missing, refused a request or failed while playing."""
 
@@ -457,9 +472,16 @@ class Device(abc.ABC):
 
     @abc.abstractmethod
     def play(
-        self, program: Program, hand: Hand | None = None, progress: Progress | None = None
+        self,
+        program: Program,
+        hand: Hand | None = None,
+        progress: Progress | None = None,
+        monitor: Monitor | None = None,
     ) -> Telemetry:
-        """Play coefficient blocks (or a position program) and return what happened."""
+        """Play coefficient blocks (or a position program) and return what happened.
+
+        `monitor`, if given, receives each piece of telemetry as the device reports it.
+        """
 
     @classmethod
     def discover(cls) -> list[str]:

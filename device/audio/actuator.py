@@ -20,6 +20,8 @@ from timeline.devices import (
     DeviceError,
     DeviceInfo,
     Hand,
+    LiveTelemetry,
+    Monitor,
     PositionProgram,
     Progress,
     Telemetry,
@@ -105,6 +107,7 @@ class AudioActuator(Device):
         program: Iterable[CoefficientBlock] | PositionProgram,
         hand: Hand | None = None,
         progress: Progress | None = None,
+        monitor: Monitor | None = None,
     ) -> Telemetry:
         """Play the drive term of every block on the sound card; returns what was sent."""
         if isinstance(program, PositionProgram):
@@ -124,7 +127,12 @@ class AudioActuator(Device):
                     drive, n_bad = _drive(block, dropped)
                     bad += n_bad
                     played.append(drive)
-                    self._write(stream, resampler.resample_chunk(self._out(drive)))
+                    out = self._out(drive)
+                    self._write(stream, resampler.resample_chunk(out))
+                    if monitor and len(out):
+                        first = sum(map(len, played)) - len(out)
+                        time = (first + np.arange(len(out))) / self.rate
+                        monitor(LiveTelemetry(time, np.zeros(len(out)), out.astype(np.float64)))
                     if progress:
                         progress(sum(map(len, played)) / self.rate, None)
                 self._write(stream, resampler.resample_chunk(np.zeros(0, np.float32), last=True))

@@ -12,6 +12,8 @@ from timeline.devices import (
     Device,
     DeviceInfo,
     Hand,
+    LiveTelemetry,
+    Monitor,
     PositionProgram,
     Progress,
     Telemetry,
@@ -45,21 +47,28 @@ class SimKnob(Device):
         program: Iterable[CoefficientBlock] | PositionProgram,
         hand: Hand | None = None,
         progress: Progress | None = None,
+        monitor: Monitor | None = None,
     ) -> Telemetry:
         """Play blocks (time mode) or a position program from the knob's current angle."""
         self.physics.start(hand)
-        parts = []
+        parts: list[Telemetry] = []
+
+        def keep(part: Telemetry) -> None:
+            parts.append(part)
+            if monitor and len(part):
+                monitor(LiveTelemetry(part.time, part.angle, part.torque))
+
         if isinstance(program, PositionProgram):
             total_n = round(program.duration * self.params.rate)
             chunk = max(1, round(POSITION_CHUNK * self.params.rate))
             for n0 in range(0, total_n, chunk):
-                parts.append(self.physics.run_table(program, min(chunk, total_n - n0)))
+                keep(self.physics.run_table(program, min(chunk, total_n - n0)))
                 if progress:
                     progress(self.physics.samples / self.params.rate, total_n / self.params.rate)
         else:
             total = len(program) if hasattr(program, "__len__") else None
             for i, block in enumerate(program):
-                parts.append(self.physics.run_block(block))
+                keep(self.physics.run_block(block))
                 if progress:
                     seconds = self.physics.samples / self.params.rate
                     progress(seconds, None if total is None else seconds * total / (i + 1))

@@ -19,6 +19,7 @@ from timeline.devices import (
     DeviceError,
     DeviceInfo,
     Hand,
+    Monitor,
     PositionProgram,
     Progress,
     Telemetry,
@@ -110,6 +111,7 @@ class UsbKnob(Device):
         program: Iterable[CoefficientBlock] | PositionProgram,
         hand: Hand | None = None,
         progress: Progress | None = None,
+        monitor: Monitor | None = None,
     ) -> Telemetry:
         """Stream coefficient blocks to the device and return the telemetry it reported."""
         if isinstance(program, PositionProgram):
@@ -131,7 +133,7 @@ class UsbKnob(Device):
         chunker = Chunker(chain([] if first is None else [first], rest), p.channel_names(mask))
         try:
             link.set_limits(float(stream.limits[0]), self.watchdog_ms)
-            stream.run(chunker, progress, total)
+            stream.run(chunker, progress, total, monitor)
             link.stop()
         except BaseException:
             link.abort()

@@ -16,7 +16,7 @@ from device.sim.stability import stability_flags
 from device.usb import protocol as p
 from device.usb.errors import DeviceFault, DeviceUnderrun, UsbDeviceError
 from device.usb.link import Link
-from timeline.devices import CoefficientBlock, Progress, Telemetry
+from timeline.devices import CoefficientBlock, LiveTelemetry, Monitor, Progress, Telemetry
 
 
 class Chunker:
@@ -96,7 +96,11 @@ class Stream:
         self._n_received = 0
 
     def run(
-        self, chunker: Chunker, progress: Progress | None = None, total: float | None = None
+        self,
+        chunker: Chunker,
+        progress: Progress | None = None,
+        total: float | None = None,
+        monitor: Monitor | None = None,
     ) -> None:
         """Stream everything the chunker yields and read telemetry until all of it is played."""
         if not chunker.available(1):
@@ -111,7 +115,12 @@ class Stream:
                 seq += 1
                 since += len(rows)
             report = self.link.read_report()
+            first = self._n_received
             self._check(report, end)
+            if monitor and len(report.samples):
+                rows = report.samples.astype(np.float64)
+                time = (first + np.arange(len(rows))) / self.rate
+                monitor(LiveTelemetry(time, rows[:, 0], rows[:, 2]))
             fill, since = report.buffer_fill, 0
             if progress:
                 progress(min(self._n_received, self._n_sent) / self.rate, total)

@@ -14,32 +14,11 @@ import numpy as np
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from timeline import playback
-from timeline.devices import Device, Hand, Telemetry, device_names, open_device
+from timeline.devices import Device, Hand, LiveTelemetry, device_names, open_device
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
 
 from .live_stream import LiveStream
-
-
-class TelemetryTap:
-    """Wraps a simulated device's physics so every block's telemetry reaches the scope live."""
-
-    def __init__(self, physics, sink) -> None:
-        self._physics = physics
-        self._sink = sink
-
-    def __getattr__(self, name: str):
-        return getattr(self._physics, name)
-
-    def run_block(self, block):
-        part = self._physics.run_block(block)
-        self._sink(part)
-        return part
-
-    def run_table(self, program, n):
-        part = self._physics.run_table(program, n)
-        self._sink(part)
-        return part
 
 
 class Player(QObject):
@@ -60,7 +39,7 @@ class Player(QObject):
         self.stream: LiveStream | None = None
         self.hand = Hand("hold")
         self._thread: threading.Thread | None = None
-        self._parts: deque[Telemetry] = deque(maxlen=200)
+        self._parts: deque[LiveTelemetry] = deque(maxlen=200)
         self._position: float | None = None
         self._outcome: str | None = None
         self._poll = QTimer(self)
@@ -87,9 +66,6 @@ class Player(QObject):
     def _open(self) -> Device:
         if self.device is None:
             self.device = open_device(self.device_name)
-            physics = getattr(self.device, "physics", None)
-            if physics is not None and hasattr(physics, "run_block"):
-                self.device.physics = TelemetryTap(physics, self._part)
         return self.device
 
     def play(
@@ -124,7 +100,7 @@ class Player(QObject):
 
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:
-            device.play(program, hand)
+            device.play(program, hand, monitor=self._part)
         except HapticTimelineError as exc:
             self._outcome = str(exc)
             return
@@ -133,7 +109,7 @@ class Player(QObject):
     def _at(self, state) -> None:
         self._position = state.position
 
-    def _part(self, part: Telemetry) -> None:
+    def _part(self, part: LiveTelemetry) -> None:
         if len(part):
             self._parts.append(part)
 

@@ -1,0 +1,28 @@
+"""Every device reports telemetry live through the monitor, matching what it returns at the end."""
+
+import numpy as np
+import pytest
+
+from device.sim import SimKnob
+from device.usb import UsbKnob
+from timeline.devices import CoefficientBlock, Hand
+
+
+def blocks(n_blocks=5, n=200):
+    t = np.arange(n_blocks * n) / 10_000
+    d = 0.05 * np.sin(2 * np.pi * 20 * t)
+    k = np.full_like(t, 0.5)
+    return [CoefficientBlock(d[i : i + n], k[i : i + n], np.zeros(n)) for i in range(0, len(t), n)]
+
+
+@pytest.mark.parametrize("make", [SimKnob, lambda: UsbKnob(emulate=True)])
+def test_monitor_pieces_add_up_to_the_telemetry(make):
+    pieces = []
+    with make() as device:
+        tel = device.play(blocks(), Hand("hold"), monitor=pieces.append)
+    assert len(pieces) >= 2
+    time = np.concatenate([p.time for p in pieces])
+    np.testing.assert_allclose(time, tel.time)
+    np.testing.assert_array_equal(np.concatenate([p.angle for p in pieces]), tel.angle)
+    np.testing.assert_array_equal(np.concatenate([p.torque for p in pieces]), tel.torque)
+    assert np.abs(tel.torque).max() > 0.01
