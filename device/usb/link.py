@@ -28,11 +28,16 @@ _LIBUSB_NO_DEVICE, _LIBUSB_PIPE, _LIBUSB_ACCESS = -4, -9, -3
 
 
 def default_backend() -> Any:
-    """libusb from the libusb-package wheel when installed, else None (pyusb picks a backend)."""
+    """libusb from the libusb-package wheel when installed, else the system's libusb-1.0.
+
+    None when neither can be loaded.
+    """
     try:
         import libusb_package
     except ImportError:
-        return None
+        import usb.backend.libusb1
+
+        return usb.backend.libusb1.get_backend()
     return libusb_package.get_libusb1_backend()
 
 

@@ -21,7 +21,7 @@ def libusb(monkeypatch: pytest.MonkeyPatch):
     monkeypatch.delenv(EMULATE_ENV, raising=False)
     backend = default_backend()
     if backend is None:
-        pytest.skip("libusb-package's libusb could not be loaded or initialised here")
+        pytest.skip("no libusb-1.0 could be loaded here (apt-get install libusb-1.0-0)")
     if find_devices(0x1209, 0x0001, backend):
         pytest.skip("a real haptic-timeline device (1209:0001) is attached")
     return backend
