@@ -406,15 +406,25 @@ class Telemetry:
             tuple(dict.fromkeys(w for p in parts for w in p.warnings)),
         )
 
-    def summary(self) -> list[str]:
-        """Human-readable summary lines: peak torque, saturation, energy, flags."""
-        lines = [
-            f"played {len(self) / self.rate:.3f} s ({len(self)} samples at {self.rate:g} Hz)",
-            f"peak torque {self.peak_torque * 1e3:.2f} mNm",
-            f"saturated {self.time_saturated:.4f} s",
-            f"energy injected by the device {self.energy_injected * 1e3:+.4g} mJ"
-            + (" (active)" if self.energy_injected > 0 else " (passive)"),
-        ]
+    def summary(self, kind: str = "kinesthetic") -> list[str]:
+        """Human-readable summary lines: peak output, saturation, energy (knobs), flags.
+
+        A vibrotactile device's output is a fraction of its full scale and it has no angle, so
+        its peak is given in percent and no energy is reported.
+        """
+        lines = [f"played {len(self) / self.rate:.3f} s ({len(self)} samples at {self.rate:g} Hz)"]
+        if kind == "vibrotactile":
+            lines += [
+                f"peak output {self.peak_torque * 100:.1f}% of full scale",
+                f"at full scale {self.time_saturated:.4f} s",
+            ]
+        else:
+            lines += [
+                f"peak torque {self.peak_torque * 1e3:.2f} mNm",
+                f"saturated {self.time_saturated:.4f} s",
+                f"energy injected by the device {self.energy_injected * 1e3:+.4g} mJ"
+                + (" (active)" if self.energy_injected > 0 else " (passive)"),
+            ]
         lines += [f"flag {f.describe()}" for f in self.flags] or ["no stability flags"]
         lines += [f"warning: {w}" for w in self.warnings]
         return lines
@@ -497,6 +507,11 @@ def device_names() -> list[str]:
 def open_device(name: str = "sim", **options: Any) -> Device:
     """Find a device plugin by name, construct it with options, open it and return it."""
     cls = plugins.get(plugins.DEVICES, name)
-    device = cls(**options)
+    try:
+        device = cls(**options)
+    except TypeError as exc:
+        if not options:
+            raise
+        raise DeviceError(f"the {name} device does not take those options ({exc})") from None
     device.open()
     return device

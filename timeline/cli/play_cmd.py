@@ -6,6 +6,7 @@ import argparse
 import math
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -21,6 +22,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("play", help="play a project on a device (the simulated knob by default)")
     p.add_argument("project", help="a .htl project file")
     p.add_argument("--device", default="sim", help="device plugin: sim (default), usb, audio")
+    p.add_argument(
+        "--device-option",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="an option for the device plugin, e.g. emulate=true or vid=0x1209 (repeatable)",
+    )
     p.add_argument(
         "--hand", default="hold", help="hold (default), free, turn:DEG_PER_S or push:MNM"
     )
@@ -55,6 +63,24 @@ class _Progress:
             print(file=sys.stderr)
 
 
+def parse_option(text: str) -> tuple[str, Any]:
+    """KEY=VALUE with VALUE read as an integer (0x.. too), a number, true/false, or text."""
+    key, sep, value = text.partition("=")
+    if not sep or not key.strip():
+        raise HapticTimelineError(f"a device option is KEY=VALUE, not {text!r}")
+    key, value = key.strip().replace("-", "_"), value.strip()
+    if value.lower() in ("true", "yes", "on"):
+        return key, True
+    if value.lower() in ("false", "no", "off"):
+        return key, False
+    for convert in (lambda v: int(v, 0), float):
+        try:
+            return key, convert(value)
+        except ValueError:
+            pass
+    return key, value
+
+
 def run(args: argparse.Namespace) -> int:
     project = load(args.project)
     hand = Hand.parse(args.hand)
@@ -64,12 +90,13 @@ def run(args: argparse.Namespace) -> int:
         )
     origin = None if args.origin is None else math.radians(args.origin)
     progress = _Progress()
-    with open_device(args.device) as device:
+    options = dict(parse_option(text) for text in args.device_option)
+    with open_device(args.device, **options) as device:
         playback = prepare(project, device.info, args.duration, hand, args.quality, origin)
         telemetry = device.play(playback.program, hand, progress)
     progress.done()
     print(f"{Path(args.project).name} on {device.info.name} with hand {hand}")
-    for line in telemetry.summary():
+    for line in telemetry.summary(device.info.kind):
         print(f"  {line}")
     if args.output:
         telemetry.write_csv(args.output, playback.layer_names)
