@@ -18,7 +18,9 @@ from timeline.formats import FormatError, Layers, Progress
 from timeline.tiles import SampledTile
 
 BLOCK_FRAMES = 1 << 16
-DEFAULT_SUBTYPE = "FLOAT"
+# Written when no subtype is asked for: float where the container holds it (no rounding), else
+# 24-bit (FLAC), else the container's own default (OGG: Vorbis).
+PREFERRED_SUBTYPES = ("FLOAT", "PCM_24")
 # libsndfile notes a chunk whose declared size runs past the end of the file as
 # "data : 40000 (should be 19979)"; that is a truncated file.
 _SHORT_CHUNK = re.compile(
@@ -141,14 +143,18 @@ class AudioFormat:
         frames = np.zeros((source.length, len(columns)))
         for i, col in enumerate(columns):
             frames[: len(col), i] = col
-        subtype = (subtype or DEFAULT_SUBTYPE).upper()
+        container = _container(path)
+        if subtype is None:
+            choices = [s for s in PREFERRED_SUBTYPES if sf.check_format(container, s)]
+            subtype = choices[0] if choices else sf.default_subtype(container)
+        subtype = subtype.upper()
         rate = source.rate
         if rate != int(rate) or rate < 1:
             raise FormatError(f"audio files need a whole-number rate, not {rate} Hz")
         try:
-            sf.write(path, frames, int(rate), subtype=subtype, format=_container(path))
+            sf.write(path, frames, int(rate), subtype=subtype, format=container)
         except (sf.LibsndfileError, ValueError, TypeError) as exc:
-            raise FormatError(f"cannot write {path.name} as {subtype} audio ({exc})") from None
+            raise FormatError(f"cannot write {container} audio as {subtype} ({exc})") from None
 
 
 def _container(path: Path) -> str:

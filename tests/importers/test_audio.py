@@ -167,3 +167,20 @@ def test_wav_export_at_a_chosen_rate_and_subtype_imports_back(tmp_path, subtype)
     np.testing.assert_allclose(back.data, data * 0.18, atol=2**-22)
     exporting.export_project(project, out, rate=8000)
     assert sf.info(out).samplerate == 8000
+
+
+def test_export_picks_a_subtype_each_container_can_hold(tmp_path):
+    from timeline import edits
+    from timeline.exporting import export_project
+    from timeline.tiles import generator
+
+    p = edits.new_project(templates=False)
+    p, track = edits.add_track(p, "drive")
+    p, tile = edits.add_tile(p, generator("sine", 0.1, frequency=100))
+    p, _ = edits.add_clip(p, track, tile, 0.0)
+    expected = {"wav": "FLOAT", "flac": "PCM_24", "ogg": "VORBIS", "aiff": "FLOAT"}
+    for ext, subtype in expected.items():
+        export_project(p, tmp_path / f"x.{ext}")
+        assert sf.info(str(tmp_path / f"x.{ext}")).subtype == subtype
+    data, rate = sf.read(str(tmp_path / "x.flac"))
+    assert rate == 10_000 and abs(data.max() - 0.18) < 1e-6  # 24-bit keeps the peak

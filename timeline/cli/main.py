@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from timeline.errors import HapticTimelineError
@@ -53,6 +54,10 @@ def main(argv: list[str] | None = None) -> int:
     except HapticTimelineError as exc:
         print(f"haptic-timeline: {exc}", file=sys.stderr)
         return 1
+    except BrokenPipeError:
+        # The reader went away (e.g. `| head`): stop quietly, as other command-line tools do.
+        sys.stdout = open(os.devnull, "w")  # noqa: SIM115 - replaces the closed stream for exit
+        return 0
     except OSError as exc:
         where = f" ({exc.filename})" if exc.filename else ""
         print(f"haptic-timeline: {exc.strerror or exc}{where}", file=sys.stderr)
