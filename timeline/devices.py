@@ -125,6 +125,26 @@ class CoefficientBlock:
         return int(self.d.size)
 
     @classmethod
+    def split(
+        cls,
+        d: np.ndarray,
+        k: np.ndarray,
+        b: np.ndarray,
+        m: np.ndarray | None,
+        size: int,
+    ) -> list[CoefficientBlock]:
+        """Cut whole coefficient arrays into blocks of `size` samples (the last may be shorter)."""
+        return [
+            cls(
+                d[i : i + size],
+                k[i : i + size],
+                b[i : i + size],
+                None if m is None else m[i : i + size],
+            )
+            for i in range(0, len(d), max(1, size))
+        ]
+
+    @classmethod
     def zeros(cls, n: int, mass: bool = False) -> CoefficientBlock:
         """A block of n samples that renders no torque."""
         z = np.zeros(n)

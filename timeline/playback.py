@@ -70,16 +70,7 @@ def coefficient_blocks(
     d, k, b = (sums.get(t, zero) for t in "dkb")
     m = sums.get("m")
     size = max(1, int(round(block_seconds * rate)))
-    blocks = [
-        CoefficientBlock(
-            d[i : i + size],
-            k[i : i + size],
-            b[i : i + size],
-            None if m is None else m[i : i + size],
-        )  # fmt: skip
-        for i in range(0, n, size)
-    ]
-    return blocks, names
+    return CoefficientBlock.split(d, k, b, m, size), names
 
 
 def position_table(

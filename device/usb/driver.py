@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterable, Sequence
+from dataclasses import replace
 from itertools import chain
 from typing import Any
 
@@ -168,18 +169,7 @@ def _emulated_backend(vid: int, pid: int) -> Any:
 
 
 def _warn(tel: Telemetry, message: str) -> Telemetry:
-    return Telemetry(
-        tel.rate,
-        tel.time,
-        tel.angle,
-        tel.velocity,
-        tel.torque,
-        tel.energy,
-        tel.saturated,
-        tel.layers,
-        tel.flags,
-        (*tel.warnings, message),
-    )
+    return replace(tel, warnings=(*tel.warnings, message))
 
 
 def _describe(dev: Any) -> str:
