@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from timeline.clip_render import render_clip
 from timeline.errors import EditError
 from timeline.kinds import track_kind
 from timeline.model import (
@@ -30,6 +31,8 @@ from timeline.model import (
     Track,
     Variant,
 )
+from timeline.quality import preset
+from timeline.templates import template_tiles
 from timeline.tiles import SampledTile, Tile
 
 _EDGE_TOLERANCE = 1e-9  # relative slack when a source edge lands on the tile's end
@@ -42,8 +45,6 @@ def new_project(
 
     With templates, the Templates tab holds one tile of every generator.
     """
-    from timeline.templates import template_tiles
-
     if rate is None:
         rate = DEFAULT_TIME_RATE if axis == "time" else DEFAULT_POSITION_RATE
     project = Project(axis=axis, rate=rate, metadata=metadata)
@@ -212,10 +213,11 @@ def _check_source(project: Project, clip: Clip) -> Clip:
 def _put_clip(project: Project, clip: Clip, track_id: str | None = None) -> Project:
     """Replace a clip (same id) or add it to a track."""
     _check_source(project, clip)
+    target = track_id or project.find_clip(clip.id)[0].id
     tracks = []
     for t in project.tracks:
         clips = tuple(c for c in t.clips if c.id != clip.id)
-        if t.id == (track_id or project.find_clip(clip.id)[0].id):
+        if t.id == target:
             clips = tuple(sorted(clips + (clip,), key=lambda c: (c.start, c.id)))
         tracks.append(replace(t, clips=clips))
     return replace(project, tracks=tuple(tracks))
@@ -404,9 +406,6 @@ def merge_clips(
     With replace_clips, the clips are removed and one clip of the new tile takes their place on
     the track of the earliest clip, so the design renders the same.
     """
-    from timeline.clip_render import render_clip
-    from timeline.quality import preset
-
     ids = list(dict.fromkeys(clip_ids))
     if not ids:
         raise EditError("select at least one clip to merge")
