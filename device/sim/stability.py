@@ -14,13 +14,18 @@ from timeline.devices import StabilityFlag
 
 
 def passive_stiffness(device_damping: float, virtual_damping, period: float):
-    """K_pass = 2*(b_dev - |B|)/T (N*m/rad); works on scalars and arrays."""
-    return 2.0 * (device_damping - np.abs(virtual_damping)) / period
+    """K_pass = 2*(b_dev - |B|)/T (N*m/rad); works on scalars and arrays.
+
+    An absurd virtual damping gives -inf (nothing is passive), which is the right answer.
+    """
+    with np.errstate(over="ignore"):
+        return 2.0 * (device_damping - np.abs(virtual_damping)) / period
 
 
 def stable_stiffness(device_damping: float, virtual_damping, period: float):
     """K_stab = 2*(b_dev + B)/T: above it a free knob oscillates with growing amplitude."""
-    return 2.0 * (device_damping + np.asarray(virtual_damping)) / period
+    with np.errstate(over="ignore"):
+        return 2.0 * (device_damping + np.asarray(virtual_damping)) / period
 
 
 def stability_flags(
