@@ -1,0 +1,134 @@
+"""Quality presets: time per rendered second against error on fixed scenes.
+
+Each preset (and candidate presets that differ in one parameter) renders each scene with a fresh
+mixer; the error is against the scene's float64 reference (exact generator, spline and fade
+formulas; for recordings the in-band tones they were made of), relative to full scale. Errors in
+the first and last 10 ms of a recording are excluded (a band-limited resampler rings at a cut).
+Stop-band rejection: a 48 kHz recording of a 7.3 kHz tone, above the 5 kHz Nyquist, rendered at
+10 kHz; the level of its alias at 2.7 kHz in dB re the tone (more negative is better).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from timeline.bench.report import Table, best_time, figure, save
+from timeline.bench.scenes import RECORDING_RATE, SCENE_RATE, Scene, quality_scenes
+from timeline.kinds import track_kind
+from timeline.mixer import Mixer
+from timeline.quality import PRESETS, QualityPreset
+from timeline.tiles import SampledTile
+
+NAME = "quality"
+SUMMARY = "quality presets: time per rendered second against error, Pareto plot"
+EDGE = 0.01  # s excluded at a recording's ends
+ALIAS_TONE = 7_300.0  # Hz, aliases to 10 kHz - 7.3 kHz = 2.7 kHz
+
+
+def candidates() -> dict[str, QualityPreset]:
+    """The presets, and variants of draft that differ in one parameter."""
+    found = dict(PRESETS)
+    draft = PRESETS["draft"]
+    for d in (1, 2, 4, 8):
+        if d != draft.control_decimation:
+            found[f"draft, decimation {d}"] = replace(
+                draft, name=f"draft-d{d}", control_decimation=d
+            )
+    other = np.float64 if draft.numpy_dtype == np.float32 else np.float32
+    found[f"draft, {np.dtype(other).name}"] = replace(draft, name="draft-dtype", dtype=other)
+    found["normal, linear fraction"] = replace(
+        PRESETS["normal"], name="normal-lf", fraction="linear"
+    )
+    return found
+
+
+def errors(scene: Scene, q: QualityPreset) -> tuple[float, float, np.ndarray]:
+    """Max abs and RMS error (full-scale units) and the rendered shape."""
+    full = track_kind("drive").full_scale
+    seconds = len(scene.reference) / SCENE_RATE
+    out = Mixer().render(scene.project, 0.0, seconds, SCENE_RATE, q)["drive"] / full
+    err = np.asarray(out, dtype=np.float64) - scene.reference
+    if scene.resampled:
+        edge = int(EDGE * SCENE_RATE)
+        err = err[edge:-edge]
+    return float(np.max(np.abs(err))), float(np.sqrt(np.mean(err**2))), out
+
+
+def rejection(q: QualityPreset, seconds: float) -> float:
+    """Alias level (dB re the tone) of a 7.3 kHz tone in a 48 kHz recording rendered at 10 kHz."""
+    from timeline.bench.scenes import _one_clip
+
+    t48 = np.arange(int(seconds * RECORDING_RATE)) / RECORDING_RATE
+    project = _one_clip(SampledTile(np.sin(2 * np.pi * ALIAS_TONE * t48), RECORDING_RATE), seconds)
+    y = Mixer().render(project, 0.0, seconds, SCENE_RATE, q)["drive"]
+    y = np.asarray(y, dtype=np.float64) / track_kind("drive").full_scale
+    core = slice(len(y) // 4, 3 * len(y) // 4)
+    t = np.arange(len(y))[core] / SCENE_RATE
+    alias = SCENE_RATE - ALIAS_TONE
+    basis = np.column_stack([np.sin(2 * np.pi * alias * t), np.cos(2 * np.pi * alias * t)])
+    coef, *_ = np.linalg.lstsq(basis, y[core], rcond=None)
+    return float(20 * np.log10(max(float(np.hypot(*coef)), 1e-12)))
+
+
+def run(quick: bool, out: Path) -> list[Table]:
+    seconds = 1.0 if quick else 4.0
+    repeat = 3 if quick else 7
+    scenes = quality_scenes(seconds)
+    Mixer().render(scenes[2].project, 0.0, 0.1)  # imports, not timed
+    table = Table(
+        f"Quality presets on fixed scenes ({seconds:g} s each at 10 kHz, best of {repeat})",
+        ["preset", "scene", "ms per rendered s", "max abs error", "RMS error", "stop-band dB"],
+    )
+    summary = Table(
+        "Quality presets overall (sum of times, worst errors over the scenes)",
+        ["preset", "ms per rendered s", "worst max abs", "worst RMS", "stop-band dB"],
+    )
+    points = {}
+    for label, q in candidates().items():
+        stop = rejection(q, seconds)
+        total, worst_max, worst_rms = 0.0, 0.0, 0.0
+        for scene in scenes:
+            t = best_time(
+                lambda s=scene, q=q: Mixer().render(s.project, 0, seconds, 1e4, q), repeat
+            )
+            peak, rms, _ = errors(scene, q)
+            per_second = 1e3 * t / seconds
+            table.rows.append([label, scene.name, per_second, peak, rms,
+                               stop if scene.resampled else "-"])  # fmt: skip
+            total += per_second / len(scenes)
+            worst_max, worst_rms = max(worst_max, peak), max(worst_rms, rms)
+        summary.rows.append([label, total, worst_max, worst_rms, stop])
+        points[label] = (total, worst_rms)
+    summary.notes += [
+        "time: a fresh mixer renders the one-clip scene (shape evaluation, resampling, mixing); "
+        "mean over the scenes",
+        "errors: relative to full scale, against exact float64 values",
+    ]
+    pareto(points, out)
+    return [summary, table]
+
+
+def pareto(points: dict[str, tuple[float, float]], out: Path) -> None:
+    fig, ax = figure(7.0, 4.5)
+    front = sorted(points.items(), key=lambda kv: kv[1][0])
+    best = np.inf
+    line = []
+    for _, (t, e) in front:
+        if e < best:
+            best = e
+            line.append((t, e))
+    floor = 1e-17
+    xs, ys = zip(*[(t, max(e, floor)) for t, e in line], strict=True)
+    ax.step(xs, ys, where="post", color="0.7", label="Pareto front", zorder=1)
+    for i, (label, (t, e)) in enumerate(points.items()):
+        ax.scatter([t], [max(e, floor)], s=45, color=f"C{i}", zorder=2, label=label)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("ms per rendered second (mean over scenes)")
+    ax.set_ylabel("worst RMS error (full scale)")
+    ax.set_title("Quality presets: time against error", fontsize=10)
+    ax.legend(fontsize=8, loc="best")
+    save(fig, out, "quality_pareto")
