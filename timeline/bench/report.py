@@ -53,16 +53,17 @@ def best_time(fn: Callable[[], object], repeat: int) -> float:
     return best
 
 
-def figure(width: float = 7.0, height: float = 4.5):
-    """A new matplotlib figure and axes drawn with the Agg backend (no display needed)."""
+def figure(width: float = 7.0, height: float = 4.5, ncols: int = 1):
+    """A new matplotlib figure and axes (one, or a list of ncols) drawn with the Agg backend."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(width, height), dpi=110)
-    ax.grid(True, which="both", alpha=0.3)
-    return fig, ax
+    fig, axes = plt.subplots(1, ncols, figsize=(width, height), dpi=110, squeeze=False)
+    for ax in axes[0]:
+        ax.grid(True, which="both", alpha=0.3)
+    return fig, (axes[0][0] if ncols == 1 else list(axes[0]))
 
 
 def save(fig, out: Path, name: str) -> Path:
