@@ -27,10 +27,10 @@ class QualityPreset:
 
 PRESETS: dict[str, QualityPreset] = {
     # Measured (docs/accuracy.md): decimating shape evaluation saved no measurable time but cost
-    # up to 46 % error on a 20-400 Hz chirp, and float32 output saved none either (the mixer sums
-    # in float64; converting is one more pass). So draft differs from normal only in resampling
-    # recordings linearly, without anti-aliasing.
-    "draft": QualityPreset("draft", "linear", "linear", 1, np.float64),
+    # up to 46 % error on a 20-400 Hz chirp, so draft evaluates every sample. It resamples
+    # recordings linearly (no anti-aliasing) and returns float32 (tests rely on it; measured no
+    # faster than float64, since the mixer sums in float64).
+    "draft": QualityPreset("draft", "linear", "linear", 1, np.float32),
     "normal": QualityPreset("normal", "soxr-hq", "cubic", 1, np.float64),
     "exact": QualityPreset("exact", "soxr-vhq", "cubic", 1, np.float64),
 }
