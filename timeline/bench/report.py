@@ -66,6 +66,15 @@ def figure(width: float = 7.0, height: float = 4.5, ncols: int = 1):
     return fig, (axes[0][0] if ncols == 1 else list(axes[0]))
 
 
+def plain_log_axis(axis) -> None:
+    """Label a log axis with plain numbers (2, 5, 10) instead of powers of ten."""
+    from matplotlib.ticker import FuncFormatter
+
+    fmt = FuncFormatter(lambda v, _: f"{v:g}")
+    axis.set_major_formatter(fmt)
+    axis.set_minor_formatter(fmt)
+
+
 def save(fig, out: Path, name: str) -> Path:
     """Write the figure as out/name.png and close it."""
     import matplotlib.pyplot as plt

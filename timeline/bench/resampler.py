@@ -19,7 +19,7 @@ import numpy as np
 import soxr
 from scipy.signal import resample_poly
 
-from timeline.bench.report import Table, figure, save
+from timeline.bench.report import Table, figure, plain_log_axis, save
 
 NAME = "resampler"
 SUMMARY = "resampler choice: soxr vs resample_poly vs linear, speed and quality"
@@ -122,6 +122,7 @@ def plot(points: dict[str, list[tuple[float, float]]], seconds: float, out: Path
         xs, ys = zip(*values, strict=True)
         ax.scatter(xs, ys, s=45, color=f"C{i}", label=name)
     ax.set_xscale("log")
+    plain_log_axis(ax.xaxis)
     ax.set_xlabel(f"ms to resample {seconds:g} s (44.1 and 48 kHz -> 10 kHz)")
     ax.set_ylabel("SNR against the exact signal (dB)")
     ax.set_title("Resamplers: speed against quality", fontsize=10)

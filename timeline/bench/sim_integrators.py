@@ -102,14 +102,19 @@ def run(quick: bool, out: Path) -> list[Table]:
 
 def plot(rates: list[float], curves: dict[str, list[float]], out: Path) -> None:
     fig, ax = figure(7.0, 4.5)
+    markers = "osD^"
     for i, (name, values) in enumerate(curves.items()):
         shown = [v if math.isfinite(v) else np.nan for v in values]
-        style = "-" if name.startswith("sampled") else "--"
-        ax.plot(rates, np.maximum(shown, 1e-17), style, marker="o", ms=4, color=f"C{i}", label=name)
+        sampled = name.startswith("sampled")
+        ax.plot(rates, np.maximum(shown, 1e-17), "-" if sampled else "--", color=f"C{i}",
+                marker=markers[i % 4], ms=7 if sampled else 4, mfc="none" if sampled else None,
+                label=name)  # fmt: skip
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("device rate (Hz)")
     ax.set_ylabel("max |angle error| / (d/K)")
     ax.set_title("Simulator integrators against the analytic step response", fontsize=10)
-    ax.legend(fontsize=7, ncol=2, loc="lower left")
+    ax.legend(
+        fontsize=7, ncol=2, loc="lower left", title="identical curves overlap", title_fontsize=7
+    )
     save(fig, out, "sim_integrators")
