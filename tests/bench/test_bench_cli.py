@@ -1,0 +1,43 @@
+"""`haptic-timeline bench --quick` runs every benchmark, prints its tables and writes its plots."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+from timeline.cli.main import main
+
+PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_speed")
+TITLES = ("Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
+          "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency")  # fmt: skip
+
+
+def test_quick_bench_prints_tables_and_writes_plots(tmp_path: Path) -> None:
+    out = tmp_path / "results"
+    done = subprocess.run(
+        [sys.executable, "-m", "timeline.cli.main", "bench", "--quick", "--out", str(out)],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    for title in TITLES:
+        assert f"## {title}" in done.stdout
+    assert done.stdout.count("target:") >= 4  # mixer (2), sim speed, edit-to-feel
+    tables = (out / "tables.md").read_text()
+    assert all(f"## {title}" in tables for title in TITLES)
+    for name in PLOTS:
+        png = out / f"{name}.png"
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+
+
+def test_unknown_benchmark_is_one_sentence(capsys) -> None:
+    assert main(["bench", "--quick", "nonsense"]) == 1
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("haptic-timeline: there is no benchmark 'nonsense'") and "\n" not in err
+
+
+def test_list_names_every_benchmark(capsys) -> None:
+    assert main(["bench", "--list"]) == 0
+    names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
+    assert names == ["mixer", "quality", "resampler", "integrators", "sim-speed", "accumulation",
+                     "edit-to-feel"]  # fmt: skip
