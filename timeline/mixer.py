@@ -141,10 +141,11 @@ class _Window:
         self.placed: list[_Placed] = []
         self.starts = np.zeros(0, dtype=np.int64)
         self.ends = np.zeros(0, dtype=np.int64)
+        self.output: np.ndarray | None = None  # the buffer in a preset's other dtype
 
     @property
     def nbytes(self) -> int:
-        return self.buffer.nbytes
+        return self.buffer.nbytes + (0 if self.output is None else self.output.nbytes)
 
 
 def active_tracks(project: Project, tracks: Iterable[str] | None = None) -> list[Track]:
@@ -237,9 +238,6 @@ class Mixer:
                 self._windows.pop(key)
                 raise RenderError(f"the {kind_id} layer is {exc} {project.unit}"
                                   " (amplitudes too large to add up)") from None  # fmt: skip
-            if out.dtype != q.numpy_dtype:
-                out = out.astype(q.numpy_dtype)
-                out.setflags(write=False)
             result[kind_id] = out
         return result
 
@@ -322,8 +320,9 @@ class Mixer:
                 self._sum(window, blocks, grid)
             finally:
                 window.buffer.setflags(write=False)
+        out = _in_dtype(window, blocks, grid)
         self._windows.put(key, window, window.nbytes)
-        return window.buffer
+        return out
 
     def _unchanged(
         self, old: _Part, track: Track, scale: float, project: Project, tile_keys: dict[str, str]
@@ -431,6 +430,23 @@ def _check_finite(values: np.ndarray, grid: _Grid, first: int) -> None:
         return
     at = first + int(np.flatnonzero(~np.isfinite(values))[0])
     raise RenderError(f"not a finite number at {grid.start + at / grid.rate:.6g}")
+
+
+def _in_dtype(window: _Window, blocks: list[int], grid: _Grid) -> np.ndarray:
+    """The window in the preset's dtype: its float64 buffer, or a copy updated block by block."""
+    dtype = grid.quality.numpy_dtype
+    if dtype == window.buffer.dtype:
+        return window.buffer
+    if window.output is None or len(blocks) == -(-grid.n // BLOCK):
+        window.output = window.buffer.astype(dtype)
+    elif blocks:
+        if sys.getrefcount(window.output) > 2:  # a caller still holds the last result
+            window.output = window.output.copy()
+        window.output.setflags(write=True)
+        for b in blocks:
+            window.output[b * BLOCK : (b + 1) * BLOCK] = window.buffer[b * BLOCK : (b + 1) * BLOCK]
+    window.output.setflags(write=False)
+    return window.output
 
 
 def _tile_key(project: Project, tile_id: str, memo: dict[str, str]) -> str:
