@@ -457,12 +457,17 @@ def save_variant(project: Project, name: str) -> Project:
 
 
 def switch_variant(project: Project, name: str) -> Project:
-    """Switch the design to a variant, first keeping the current design in the active one."""
+    """Switch the design to a variant, first keeping the current design in the active one.
+
+    The variant's tracks come back with its tile shapes; tiles added since stay in the library
+    (the palette may list them), so nothing the user made disappears.
+    """
     target = project.variant(name)
     if project.active_variant and project.active_variant != name:
         project = save_variant(project, project.active_variant)
         target = project.variant(name)
-    return replace(project, tracks=target.tracks, tiles=target.tiles, active_variant=name)
+    tiles = MappingProxyType({**project.tiles, **target.tiles})
+    return replace(project, tracks=target.tracks, tiles=tiles, active_variant=name)
 
 
 def remove_variant(project: Project, name: str) -> Project:

@@ -15,8 +15,8 @@ class QualityPreset:
     """How sampled tiles are resampled, how often shapes are evaluated, and the output dtype."""
 
     name: str
-    resampler: str  # "linear", or a soxr quality: "soxr-hq", "soxr-vhq"
-    fraction: str  # interpolation for sub-sample offsets after resampling: "linear" or "cubic"
+    resampler: str  # "linear" (interpolate the source), or a soxr quality: "soxr-hq", "soxr-vhq"
+    interpolation: str  # with the linear resampler: "linear" or "cubic" between source samples
     control_decimation: int  # evaluate generators/splines every Nth sample, linear in between
     dtype: type
 
@@ -27,10 +27,10 @@ class QualityPreset:
 
 PRESETS: dict[str, QualityPreset] = {
     # Measured (docs/accuracy.md): decimating shape evaluation saved no measurable time but cost
-    # up to 46 % error on a 20-400 Hz chirp, so draft evaluates every sample. It resamples
-    # recordings linearly (no anti-aliasing) and returns float32 (tests rely on it; measured no
-    # faster than float64, since the mixer sums in float64).
-    "draft": QualityPreset("draft", "linear", "linear", 1, np.float32),
+    # up to 46 % error on a 20-400 Hz chirp, so draft evaluates every sample; float32 output was
+    # no faster (the mixer sums in float64), so every preset returns float64. Draft resamples
+    # recordings by linear interpolation (no anti-aliasing), the others band-limited with soxr.
+    "draft": QualityPreset("draft", "linear", "linear", 1, np.float64),
     "normal": QualityPreset("normal", "soxr-hq", "cubic", 1, np.float64),
     "exact": QualityPreset("exact", "soxr-vhq", "cubic", 1, np.float64),
 }

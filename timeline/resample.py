@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
+import math
+from fractions import Fraction
+
 import numpy as np
 
 from timeline.quality import QualityPreset
 
 # Samples of context kept either side of a segment so soxr's filter settles before the part used.
 _SOXR_MARGIN = 256
+_SINC_HALF = 32  # taps either side of a fractional-delay filter
+_SINC_BETA = 9.0  # its Kaiser window: about -90 dB side lobes
 
 
 def sample_grid(
@@ -26,10 +31,8 @@ def sample_grid(
         if step > 0:
             return _take(data, int(start), n)
         return _take(data, int(start) - n + 1, n)[::-1].copy()
-    if quality.resampler == "linear" or abs(step) < 1.0:
-        # Upsampling (step < 1) adds no content above the source's Nyquist: interpolation suffices,
-        # but for normal/exact use cubic to keep the passband flat.
-        return _interpolate(data, start + step * np.arange(n), quality.fraction)
+    if quality.resampler == "linear":
+        return _interpolate(data, start + step * np.arange(n), quality.interpolation)
     return _band_limited(data, start, step, n, quality)
 
 
@@ -70,6 +73,21 @@ def _catmull_rom(data: np.ndarray, x: np.ndarray) -> np.ndarray:
     )
 
 
+def _aligned_start(start: float, step: float) -> int | None:
+    """A whole source index lo, at least _SOXR_MARGIN before start, that lies a whole number of
+    output steps before it (lo = start - M*step), or None when no such index exists nearby.
+
+    Resampling from there puts every wanted output sample exactly on a resampled one, so no
+    interpolation is needed after soxr. Clips on the project grid always have one.
+    """
+    q = Fraction(step).limit_denominator(4096).denominator
+    first = math.ceil(_SOXR_MARGIN / step)
+    m = first + np.arange(q)
+    lo = start - m * step
+    hit = np.flatnonzero(np.abs(lo - np.round(lo)) < 1e-6)
+    return int(round(lo[hit[0]])) if hit.size else None
+
+
 def _band_limited(
     data: np.ndarray, start: float, step: float, n: int, quality: QualityPreset
 ) -> np.ndarray:
@@ -81,12 +99,28 @@ def _band_limited(
         # Evaluate the same points in ascending order and flip back.
         start = start + step * (n - 1)
         step = -step
-    lo = int(np.floor(start)) - _SOXR_MARGIN
+    aligned = _aligned_start(start, step)
+    lo = aligned if aligned is not None else int(np.floor(start)) - _SOXR_MARGIN
     hi = int(np.ceil(start + step * (n - 1))) + _SOXR_MARGIN + 1
     segment = _take(data, lo, hi - lo)
     soxr_quality = "VHQ" if quality.resampler == "soxr-vhq" else "HQ"
     resampled = soxr.resample(segment, 1.0, 1.0 / step, quality=soxr_quality)
-    # resampled[j] sits at source index lo + j*step.
-    index = (start - lo) / step + np.arange(n)
-    out = _interpolate(resampled, index, quality.fraction)
+    # resampled[j] sits at source index lo + j*step; the wanted samples at offset + i.
+    offset = (start - lo) / step
+    nearest = round(offset)
+    if aligned is not None or abs(offset - nearest) < 1e-9:
+        out = _take(resampled, nearest, n)
+    else:
+        first = math.floor(offset)
+        out = _fractional_delay(resampled, first, offset - first, n)
     return out[::-1] if reverse else out
+
+
+def _fractional_delay(x: np.ndarray, first: int, fraction: float, n: int) -> np.ndarray:
+    """x at indices first + fraction + i (i < n) by a Kaiser-windowed sinc (band-limited x)."""
+    k = np.arange(-_SINC_HALF + 1, _SINC_HALF + 1)
+    taps = np.sinc(k - fraction) * np.kaiser(2 * _SINC_HALF, _SINC_BETA)
+    taps /= taps.sum()
+    span = _take(x, first - _SINC_HALF, n + 2 * _SINC_HALF)
+    # out[i] = sum_k taps[k] * x[first + i + k]
+    return np.convolve(span, taps[::-1], mode="valid")[1 : n + 1]

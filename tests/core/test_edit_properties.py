@@ -159,3 +159,12 @@ def test_history_merges_a_drag_into_one_step():
         h.do("move", edits.move_clip(p, clip, start=x), merge_key=("drag", clip))
     assert len(h) == 2 and h.project.find_clip(clip)[1].start == 0.3
     assert h.undo() == p
+
+
+def test_switching_variant_keeps_tiles_made_since_in_the_library():
+    p = edits.save_variant(base_project(), "A")
+    merged, tile_id = edits.merge_clips(p, [p.tracks[0].clips[0].id])
+    back = edits.switch_variant(merged, "A")
+    assert back.tracks == p.tracks  # the design of A
+    assert tile_id in back.tiles and tile_id in back.tab("Scratch").tile_ids
+    assert projectfile.loads(projectfile.dumps(back)) == back

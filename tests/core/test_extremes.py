@@ -53,10 +53,16 @@ def test_rates_from_1hz_to_192khz(rate):
     np.testing.assert_allclose(out, FULL * np.arange(len(out)) / rate, rtol=1e-12, atol=1e-15)
 
 
-def test_sampled_tile_at_1hz_renders_at_192khz_finite():
-    p, _ = one_clip(SampledTile([0.0, 1.0, -1.0, 0.5], 1.0))
-    out = render(p, 0.0, 4.0, 192_000.0)["drive"]
-    assert np.isfinite(out).all() and out[192_000] == FULL
+def test_sampled_tile_at_1hz_renders_at_192khz_band_limited():
+    """A 0.05 Hz sine sampled at 1 Hz, played at 192 kHz, is the sine again between samples."""
+    data = np.sin(2 * np.pi * 0.05 * np.arange(100))
+    p, _ = one_clip(SampledTile(data, 1.0))
+    out = render(p, 30.0, 32.0, 192_000.0)["drive"] / FULL
+    t = 30.0 + np.arange(len(out)) / 192_000
+    assert np.isfinite(out).all()
+    np.testing.assert_allclose(out, np.sin(2 * np.pi * 0.05 * t), atol=1e-3)
+    draft = render(p, 30.0, 32.0, 192_000.0, quality="draft")["drive"] / FULL
+    assert draft[0] == pytest.approx(data[30], abs=1e-12)  # on a sample: the sample itself
 
 
 def test_ten_thousand_overlapping_clips_match_an_fsum_reference():

@@ -39,9 +39,7 @@ def candidates() -> dict[str, QualityPreset]:
             )
     other = np.float64 if draft.numpy_dtype == np.float32 else np.float32
     found[f"draft, {np.dtype(other).name}"] = replace(draft, name="draft-dtype", dtype=other)
-    found["normal, linear fraction"] = replace(
-        PRESETS["normal"], name="normal-lf", fraction="linear"
-    )
+    found["draft, cubic interpolation"] = replace(draft, name="draft-cubic", interpolation="cubic")
     return found
 
 
