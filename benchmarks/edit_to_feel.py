@@ -83,7 +83,7 @@ def main() -> None:
     win.player.close()
     ms = sorted(1e3 * x for x in latencies)
     p99 = ms[min(len(ms) - 1, int(round(0.99 * (len(ms) - 1))))]
-    print(f"edits: {len(ms)} on 16 tracks x 40 clips, 120 s at 10 kHz, draft quality, sim device")
+    print(f"edits: {len(ms)} on 16 tracks x 40 clips, 120 s at 10 kHz, normal quality, sim device")
     print(
         f"edit-to-feel median {statistics.median(ms):.2f} ms, p99 {p99:.2f} ms, max {ms[-1]:.2f} ms"
     )

@@ -18,6 +18,7 @@ from timeline.devices import CoefficientBlock
 from timeline.kinds import track_kind
 from timeline.mixer import Mixer
 from timeline.model import Project
+from timeline.quality import DEFAULT_QUALITY
 
 BLOCK_SECONDS = 0.01
 CHUNK_SECONDS = 0.5
@@ -46,7 +47,7 @@ class LiveStream:
         loop: bool = False,
         tracks: Iterable[str] | None = None,
         paced: bool = True,
-        quality: str = "draft",
+        quality: str = DEFAULT_QUALITY,
     ) -> None:
         self.rate, self.start, self.stop, self.loop = rate, start, max(stop, start), loop
         self.tracks = None if tracks is None else list(tracks)
