@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from types import MappingProxyType
 from typing import Any
 
@@ -198,7 +199,7 @@ class Project:
         """The axis unit: seconds for time, radians for position."""
         return "s" if self.axis == "time" else "rad"
 
-    @property
+    @cached_property
     def duration(self) -> float:
         """End of the last clip on any track (0 for an empty project)."""
         return max((c.end for t in self.tracks for c in t.clips), default=0.0)
