@@ -12,11 +12,11 @@ emulation can feed blocks as they arrive and call `run_idle` when none arrive (w
 from __future__ import annotations
 
 import math
-from itertools import repeat
 
 import numpy as np
 from scipy.signal import lfilter
 
+from device.sim.loop import State, servo_loop
 from device.sim.params import KnobParams
 from device.sim.plant import step_matrix, system_matrix
 from device.sim.stability import stability_flags
@@ -31,6 +31,8 @@ from timeline.devices import (
 )
 
 BLOW_UP_SPEED = 1e6  # rad/s: beyond this the simulation is numerically broken, not physical
+NO_COEFFS = np.zeros((4, 0))  # the loop's coefficient rows when it plays tables
+NO_TABLES = np.zeros((3, 0))  # the loop's tables when it plays coefficients
 
 
 class KnobPhysics:
@@ -45,7 +47,7 @@ class KnobPhysics:
         self.theta = 0.0  # true absolute angle (rad)
         self.omega = 0.0  # true speed (rad/s)
         self._maps: dict[tuple[float, ...], tuple[float, ...]] = {}
-        self._tables: tuple[PositionTable | None, tuple] = (None, ())
+        self._tables: tuple[PositionTable | None, np.ndarray] = (None, NO_TABLES)
         self.start(Hand("hold"))
 
     # --- set-up ---------------------------------------------------------------------------
@@ -94,13 +96,10 @@ class KnobPhysics:
             if len(block)
             else self.last
         )
-        coeffs = (
-            block.d.tolist(),
-            block.k.tolist(),
-            block.b.tolist(),
-            None if block.m is None else block.m.tolist(),
+        rows = (
+            (block.d, block.k, block.b) if block.m is None else (block.d, block.k, block.b, block.m)
         )
-        tel = self._run(len(block), coeffs=coeffs)
+        tel = self._run(len(block), coeffs=np.array(rows, dtype=np.float64))
         layers = {"d": block.d, "k": block.k, "b": block.b}
         if block.m is not None:
             layers["m"] = block.m
@@ -131,29 +130,26 @@ class KnobPhysics:
         self.idle += n
         last = self.last
         if isinstance(last, PositionProgram):
-            return self._run_table(last, n, gain.tolist())
+            return self._run_table(last, n, gain)
         if last is None:
             last = CoefficientBlock.zeros(1)
-        reps = [
-            np.repeat(a, n).tolist() if a is not None else None
-            for a in (last.d, last.k, last.b, last.m)
-        ]
-        tel = self._run(n, coeffs=tuple(reps), gain=gain.tolist())
-        return _with(tel, {"d": np.asarray(reps[0]) * gain[: len(tel)]}, [])
+        rows = [a for a in (last.d, last.k, last.b, last.m) if a is not None]
+        coeffs = np.repeat(np.array(rows, dtype=np.float64), n, axis=1)
+        tel = self._run(n, coeffs=coeffs, gain=gain)
+        return _with(tel, {"d": coeffs[0] * gain[: len(tel)]}, [])
 
-    def _table_lists(self, table: PositionTable) -> tuple[list, list, list | None]:
-        """The tables as Python lists (fast to index in the loop), converted once per table."""
+    def _table_rows(self, table: PositionTable) -> np.ndarray:
+        """The tables T, B, M as rows of one array (absent B and M are zeros), made once."""
         if self._tables[0] is not table:
-            tt = table.torque.tolist()
-            tb = table.damping.tolist() if table.damping is not None else [0.0] * len(tt)
-            tm = table.mass.tolist() if table.mass is not None else None
-            self._tables = (table, (tt, tb, tm))
+            zeros = np.zeros_like(table.torque)
+            rows = [table.torque, table.damping, table.mass]
+            self._tables = (table, np.array([zeros if a is None else a for a in rows], np.float64))
         return self._tables[1]
 
     # --- the loop ------------------------------------------------------------------------
 
     def _run_table(
-        self, program: PositionProgram, n: int, gain: list[float] | None = None
+        self, program: PositionProgram, n: int, gain: np.ndarray | None = None
     ) -> Telemetry:
         table = program.table
         tel = self._run(n, table=(table, program.origin), gain=gain)
@@ -172,92 +168,37 @@ class KnobPhysics:
     def _run(
         self,
         n: int,
-        coeffs: tuple[list, list, list, list | None] | None = None,
+        coeffs: np.ndarray | None = None,
         table: tuple[PositionTable, float] | None = None,
-        gain: list[float] | None = None,
+        gain: np.ndarray | None = None,
     ) -> Telemetry:
+        """n servo periods of coefficient rows d, k, b(, m) or of a table at an origin."""
         if self.failed:
             raise DeviceError(f"the simulated knob stopped earlier: {self.failed}")
-        p = self.params
-        rate, period, quantum, tmax, coulomb = p.rate, p.period, p.quantum, p.max_torque, p.coulomb
-        inv_q = 1.0 / quantum if quantum else 0.0
-        av, aa = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
-        t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = self._map
-        push, push_ramp, speed = self.hand.push_torque, self.hand.push_ramp, self.hand.turn_speed
-        zeros = repeat(0.0)
-        in_table = table is not None
-        if in_table:
-            tab, origin = table
-            dl = kl = bl = zeros
-            tt, tb, tm = self._table_lists(tab)
-            use_mass = tm is not None
-            tstart, trate, tlast = tab.start, tab.rate, len(tt) - 1
+        p, hand = self.params, self.hand
+        if table is None:
+            tables, lookup, use_mass = NO_TABLES, (0.0, 0.0, 0.0), coeffs.shape[0] > 3
         else:
-            dl, kl, bl, ml = coeffs
-            use_mass = ml is not None
-        ml = zeros if not use_mass or in_table else ml
-        gl = repeat(1.0) if gain is None else gain
-        theta, omega, r = self.theta, self.omega, self.grip_target
-        anchor, prev_meas, vel, prev_vel, acc = (
-            self.anchor, self.prev_meas, self.vel, self.prev_vel, self.acc
-        )  # fmt: skip
-        elapsed = self.samples * period
-        thetas = [0.0] * n
-        taus = [0.0] * n
-        frs = [0.0] * n
-        nonfinite = 0
-        for i, d, k, b, m, g in zip(range(n), dl, kl, bl, ml, gl, strict=False):
-            meas = ((theta * inv_q + 0.5) // 1.0 * quantum if quantum else theta) - anchor
-            vel += av * ((meas - prev_meas) * rate - vel)
-            prev_meas = meas
-            if use_mass:
-                acc += aa * ((vel - prev_vel) * rate - acc)
-                prev_vel = vel
-            if in_table:  # T(theta) - B(theta)*theta_dot - M(theta)*theta_ddot, linear lookup
-                x = (origin + meas - tstart) * trate
-                j = 0 if x <= 0.0 else (tlast if x >= tlast else int(x))
-                f = x - j if 0.0 < x < tlast else 0.0
-                nxt = j + 1 if j < tlast else j
-                d = tt[j] + f * (tt[nxt] - tt[j])
-                b = tb[j] + f * (tb[nxt] - tb[j])
-                if use_mass:
-                    m = tm[j] + f * (tm[nxt] - tm[j])
-            tau = (d - k * meas - b * vel - m * acc) * g
-            if tau > tmax:
-                tau = tmax
-            elif tau < -tmax:
-                tau = -tmax
-            elif tau != tau:
-                tau = 0.0
-                nonfinite += 1
-            u = tau
-            if push:
-                u += push if elapsed >= push_ramp else push * elapsed / push_ramp
-                elapsed += period
-            free = w0 * theta + w1 * omega + w2 * u + w3 * r + w4 * speed
-            if coulomb:
-                fr = -free / w2  # the friction torque that would stop the knob in this period
-                fr = coulomb if fr > coulomb else (-coulomb if fr < -coulomb else fr)
-                u += fr
-                free += w2 * fr
-                frs[i] = fr
-            thetas[i] = theta
-            taus[i] = tau
-            theta = t0 * theta + t1 * omega + t2 * u + t3 * r + t4 * speed
-            omega = free
-            r += speed * period
-        return self._finish(np.array(thetas), np.array(taus), np.array(frs), theta, omega, r,
-                            (prev_meas, vel, prev_vel, acc), nonfinite)  # fmt: skip
+            tab, origin = table
+            coeffs, tables, use_mass = NO_COEFFS, self._table_rows(tab), tab.mass is not None
+            lookup = _floats(origin, tab.start, tab.rate)
+        filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
+        firmware = _floats(p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters)
+        motion = _floats(hand.push_torque, hand.push_ramp, hand.turn_speed, self.samples * p.period)
+        state = _floats(self.theta, self.omega, self.grip_target, self.anchor,
+                        self.prev_meas, self.vel, self.prev_vel, self.acc)  # fmt: skip
+        gain = np.ones(n) if gain is None else gain
+        thetas, taus, frictions, nonfinite, state = servo_loop(
+            coeffs, tables, gain, use_mass, lookup, firmware, self._map, motion, state
+        )
+        return self._finish(thetas, taus, frictions, state, nonfinite)
 
     def _finish(
         self,
         thetas: np.ndarray,
         taus: np.ndarray,
         frictions: np.ndarray,
-        theta: float,
-        omega: float,
-        grip_target: float,
-        estimators: tuple[float, float, float, float],
+        state: State,
         nonfinite: int,
     ) -> Telemetry:
         """Turn the loop's record (true angle before each period, torque) into telemetry.
@@ -266,6 +207,7 @@ class KnobPhysics:
         "device") put into the rotor and hand: motor work minus the friction's dissipation.
         """
         p = self.params
+        theta, omega, grip_target, _, *estimators = state
         path = np.append(thetas, theta)
         speed = np.abs(np.diff(path)) * p.rate
         bad = ~np.isfinite(path[1:]) | (speed > BLOW_UP_SPEED)
@@ -312,6 +254,11 @@ def local_stiffness(table: PositionTable, where: np.ndarray) -> np.ndarray:
     inside = (x > 0) & (x < table.torque.size - 1)
     j = np.clip(np.floor(x).astype(np.int64), 0, slope.size - 1)
     return np.where(inside, slope[j], 0.0)
+
+
+def _floats(*values: float) -> tuple[float, ...]:
+    """Plain floats for the compiled loop (one type signature, so one compilation)."""
+    return tuple(float(v) for v in values)
 
 
 def _with(tel: Telemetry, layers: dict[str, np.ndarray], flags: list[StabilityFlag]) -> Telemetry:
