@@ -1,9 +1,14 @@
 """Simulated knob speed: a 10 s icon with varying coefficients at 10 kHz, as a multiple of real
-time, and as a ratio to a bare Python loop of the same length measured in this process."""
+time, and as a ratio to a bare Python loop of the same length measured in this process; and the
+first block's cost in a new process (compiling the numba loop, or loading it from numba's cache)."""
 
 from __future__ import annotations
 
 import math
+import os
+import subprocess
+import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -17,6 +22,17 @@ NAME = "sim-speed"
 SUMMARY = "simulated knob speed as a multiple of real time (10 s icon at 10 kHz)"
 RATE = 10_000.0
 TARGET = 100.0  # x real time
+FIRST_BLOCK = """
+import time
+import numpy as np
+from device.sim import KnobPhysics
+from timeline.devices import CoefficientBlock
+knob = KnobPhysics()
+block = CoefficientBlock(np.zeros(1000), np.zeros(1000), np.zeros(1000))
+start = time.perf_counter()
+knob.run_block(block)
+print(time.perf_counter() - start)
+"""
 
 
 def icon(seconds: float, mass: bool) -> list[CoefficientBlock]:
@@ -44,6 +60,13 @@ def bare_loop(n: int) -> float:
     for i in range(n):
         x = x * 0.5 + i
     return time.perf_counter() - start
+
+
+def first_block(cache: str) -> float:
+    """Seconds for the first 0.1 s block in a new process whose numba cache is `cache`."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": cache}
+    run = [sys.executable, "-c", FIRST_BLOCK]
+    return float(subprocess.run(run, env=env, capture_output=True, text=True, check=True).stdout)
 
 
 def play(blocks: list[CoefficientBlock], hand: str) -> float:
@@ -74,6 +97,15 @@ def run(quick: bool, out: Path) -> list[Table]:
             cases[case] = seconds / best
             table.rows.append([case, seconds / best, best / n * 1e6, best / base])
     worst = min(cases.values())
+    if quick:  # two fresh processes would add seconds to CI's quick run
+        table.notes.append("first block in a new process: measured without --quick")
+    else:
+        with tempfile.TemporaryDirectory() as cache:
+            compiled, loaded = first_block(cache), first_block(cache)
+        table.notes.append(
+            f"first block in a new process: {compiled:.2f} s with an empty numba cache (compiling "
+            f"the loop), {loaded:.2f} s with the loop in the cache (later blocks: the table)"
+        )
     table.notes += [
         f"target: at least {TARGET:g}x real time: slowest case {worst:.0f}x "
         f"({'met' if worst >= TARGET else 'NOT met'})",
