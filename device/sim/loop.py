@@ -26,6 +26,9 @@ from numba import njit
 State = tuple[float, float, float, float, float, float, float, float]
 
 
+# cache: compiled once per machine (and source change); error_model="numpy": IEEE division, no
+# ZeroDivisionError checks inside the loop (its divisors, quantum and w2 and the push ramp, are
+# tested or positive before it divides)
 @njit(cache=True, error_model="numpy")
 def servo_loop(
     coeffs: np.ndarray,

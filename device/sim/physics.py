@@ -5,8 +5,9 @@ difference, low-passed) and, only when a mass layer exists, acceleration (differ
 velocity estimate, low-passed); compute tau = d - k*theta - b*theta_dot - m*theta_ddot (or the
 position tables' T - B*theta_dot - M*theta_ddot); replace NaN by 0 and clamp to the maximum;
 hold it over the period while the mechanics (rotor, viscous and Coulomb friction, the hand)
-advance by a precomputed linear map (plant.py). State persists between blocks, so a USB
-emulation can feed blocks as they arrive and call `run_idle` when none arrive (watchdog).
+advance by a precomputed linear map (plant.py); that loop is compiled (loop.py). State persists
+between blocks, so a USB emulation can feed blocks as they arrive and call `run_idle` when none
+arrive (watchdog).
 """
 
 from __future__ import annotations
