@@ -31,6 +31,7 @@ class Document(QObject):
         self.path = path
         self.selected_clips: list[str] = []
         self.selected_tile: str | None = None
+        self._announced: object = None  # merge key of the drag last announced
 
     @property
     def project(self) -> Project:
@@ -59,14 +60,15 @@ class Document(QObject):
             self.message.emit(str(exc), "error")
             return None
         project, extra = result if isinstance(result, tuple) else (result, True)
-        self.history.do(label, project, merge_key)
-        self._prune_selection()
-        self._emit_changed()
+        self.replace(label, project, merge_key)
         return extra
 
     def replace(self, label: str, project: Project, merge_key: object = None) -> None:
         """Record a project computed elsewhere (an import) as one step."""
         self.history.do(label, project, merge_key)
+        if merge_key is None or merge_key is not self._announced:
+            self._announced = merge_key
+            self.message.emit(f"{label} (Ctrl+Z undoes)", "info")
         self._prune_selection()
         self._emit_changed()
 

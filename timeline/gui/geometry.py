@@ -21,6 +21,12 @@ def display_unit(axis: str) -> str:
     return "s" if axis == "time" else "°"
 
 
+def axis_text(u: float, axis: str, spec: str = ".4g") -> str:
+    """An axis value as the user reads it: "0.25 s", or "90°" in a position project."""
+    value = format(u * display_factor(axis), spec)
+    return f"{value} s" if axis == "time" else f"{value}°"
+
+
 @dataclass
 class Geometry:
     """The mapping from the project axis to scene coordinates at the current zoom."""

@@ -68,6 +68,7 @@ class MainWindow(QMainWindow):
         self.player.finished.connect(self._play_finished)
         self._update_title()
         self._update_actions()
+        self.transport.show_position(0.0, self.doc.project.axis)
         self.resize(1400, 860)
 
     # --- layout ----------------------------------------------------------------------------
@@ -105,7 +106,7 @@ class MainWindow(QMainWindow):
         top.addWidget(self.palette)
         top.addWidget(lanes)
         top.setStretchFactor(1, 1)
-        top.setSizes([300, 1100])
+        top.setSizes([320, 1080])
         bottom = QSplitter(Qt.Orientation.Horizontal)
         bottom.addWidget(self.editor)
         bottom.addWidget(self.transport)
@@ -335,7 +336,7 @@ class MainWindow(QMainWindow):
     def _follow_playhead(self, u: float) -> None:
         self.view.scene().set_playhead(u)
         self.ruler.update()
-        self.transport.where.setText(f"{u:.3f} {self.doc.project.unit}")
+        self.transport.show_position(u, self.doc.project.axis)
 
     def _play_finished(self, error: str) -> None:
         self.transport.show_playing(False)
@@ -353,6 +354,7 @@ class MainWindow(QMainWindow):
         self.autosaver.discard()
         self.doc.reset(project, path)
         self.view.fit()
+        self.transport.show_position(self.view.scene().playhead_u, project.axis)
 
     def open_path(self, path: Path) -> bool:
         """Open a project file (after asking about unsaved changes)."""

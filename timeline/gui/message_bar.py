@@ -5,8 +5,9 @@ from __future__ import annotations
 from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QWidget
 
-COLOURS = {"info": "#1f1f1f", "error": "#b00020"}
+COLOURS = {"info": "#1f1f1f", "error": "#b00020", "hint": "#6b6b6b"}
 INFO_SECONDS = 6
+HINT = "Drag a tile from the palette onto a track · Space plays · Ctrl+Z undoes"
 
 
 class MessageBar(QWidget):
@@ -16,6 +17,10 @@ class MessageBar(QWidget):
 
     def __init__(self) -> None:
         super().__init__()
+        self.setObjectName("messageBar")
+        self.setAttribute(Qt.WidgetAttribute.WA_StyledBackground)
+        self.setStyleSheet("#messageBar { background: #eef0f3; border-top: 1px solid #c4c8ce; }")
+        self.setMinimumHeight(28)
         layout = QHBoxLayout(self)
         layout.setContentsMargins(8, 2, 8, 2)
         self.label = QLabel("")
@@ -36,9 +41,10 @@ class MessageBar(QWidget):
         self.history: list[tuple[str, str]] = []
         self._clear = QTimer(self)
         self._clear.setSingleShot(True)
-        self._clear.timeout.connect(lambda: self.label.setText(""))
+        self._clear.timeout.connect(self.show_hint)
         self._callback = None
         self.action.clicked.connect(self._run_action)
+        self.show_hint()
 
     @property
     def text(self) -> str:
@@ -53,6 +59,11 @@ class MessageBar(QWidget):
             self._clear.start(INFO_SECONDS * 1000)
         else:
             self._clear.stop()
+
+    def show_hint(self) -> None:
+        """Between messages, say in grey what to do next (not recorded in the history)."""
+        self.label.setText(HINT)
+        self.label.setStyleSheet(f"color: {COLOURS['hint']};")
 
     def offer(self, text: str, button: str, callback) -> None:
         """Show a message with a button (e.g. Recover) that runs callback once."""

@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import math
+from pathlib import Path
+
 from PySide6.QtCore import QSize, Qt, Signal
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import (
     QAbstractItemView,
+    QFileDialog,
     QHBoxLayout,
     QLineEdit,
     QListView,
@@ -17,14 +21,25 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from timeline import edits
+from timeline import edits, exporting, importing
+from timeline.errors import HapticTimelineError
+from timeline.model import Project
 from timeline.tiles import Tile
 
 from .document import Document
+from .geometry import axis_text
 from .gestures.palette_drop import tile_mime
 from .thumbnails import SIZE, thumbnail
 
 RANGE_MIME = "application/x-haptic-timeline-range"
+SCALES = (1.0, 0.9, 0.8, 0.7, 0.6)  # thumbnail sizes tried, largest first, to fit every tile
+LABEL_ROOM = (10, 28)  # grid cell room around a thumbnail for spacing and its name
+TILE_FILTERS = {
+    "MATLAB (*.mat)": ".mat",
+    "Text, Matlab-readable (*.txt)": ".txt",
+    "CSV (*.csv)": ".csv",
+    "WAV (*.wav)": ".wav",
+}
 
 
 class TileList(QListWidget):
@@ -35,8 +50,8 @@ class TileList(QListWidget):
     def __init__(self) -> None:
         super().__init__()
         self.setViewMode(QListView.ViewMode.IconMode)
-        self.setIconSize(QSize(*SIZE))
-        self.setGridSize(QSize(SIZE[0] + 14, SIZE[1] + 30))
+        self.scale = 1.0
+        self._set_scale(1.0)
         self.setResizeMode(QListView.ResizeMode.Adjust)
         self.setMovement(QListView.Movement.Static)
         self.setWordWrap(True)
@@ -44,6 +59,30 @@ class TileList(QListWidget):
         self.setAcceptDrops(True)
         self.setDragDropMode(QAbstractItemView.DragDropMode.DragDrop)
         self.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
+
+    def _set_scale(self, scale: float) -> None:
+        self.scale = scale
+        icon = QSize(round(SIZE[0] * scale), round(SIZE[1] * scale))
+        self.setIconSize(icon)
+        self.setGridSize(QSize(icon.width() + LABEL_ROOM[0], icon.height() + LABEL_ROOM[1]))
+        self.doItemsLayout()
+
+    def fit_grid(self) -> None:
+        """Use the largest thumbnails with which every tile fits without scrolling."""
+        room = self.contentsRect()
+        width = room.width() - self.verticalScrollBar().sizeHint().width()  # as if it showed
+        for scale in SCALES:
+            cell_w = round(SIZE[0] * scale) + LABEL_ROOM[0]
+            cell_h = round(SIZE[1] * scale) + LABEL_ROOM[1]
+            columns = max(1, width // cell_w)
+            if math.ceil(self.count() / columns) * cell_h <= room.height():
+                break
+        if scale != self.scale:
+            self._set_scale(scale)
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self.fit_grid()
 
     def mimeData(self, items):  # noqa: N802 - Qt override
         return tile_mime(items[0].data(Qt.ItemDataRole.UserRole)) if items else None
@@ -88,15 +127,28 @@ class Palette(QWidget):
         self.add_button.clicked.connect(self.add_tab)
         self.rename_button.clicked.connect(self.rename_tab)
         self.remove_button.clicked.connect(self.remove_tab)
-        bar = QHBoxLayout()
-        bar.setContentsMargins(0, 0, 0, 0)
-        bar.addWidget(self.name, 1)
-        for widget in (self.add_button, self.rename_button, self.remove_button):
-            bar.addWidget(widget)
+        self.save_button = QPushButton("Save tile…")
+        self.save_button.setToolTip("Save the selected tile as .mat, .txt, .csv or .wav")
+        self.save_button.clicked.connect(self.save_tile_dialog)
+        self.load_button = QPushButton("Load tile…")
+        self.load_button.setToolTip("Load a tile from a file into this tab")
+        self.load_button.clicked.connect(self.load_tile_dialog)
+        tabs_row = QHBoxLayout()
+        tabs_row.setContentsMargins(0, 0, 0, 0)
+        tabs_row.addWidget(self.name, 1)
+        tabs_row.addWidget(self.add_button)
+        tabs_row.addWidget(self.rename_button)
+        tiles_row = QHBoxLayout()
+        tiles_row.setContentsMargins(0, 0, 0, 0)
+        tiles_row.addWidget(self.remove_button)
+        tiles_row.addStretch(1)
+        tiles_row.addWidget(self.save_button)
+        tiles_row.addWidget(self.load_button)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(2, 2, 2, 2)
         layout.addWidget(self.tabs, 1)
-        layout.addLayout(bar)
+        layout.addLayout(tabs_row)
+        layout.addLayout(tiles_row)
         self._shown: tuple = ()
         self._icons: dict[tuple[str, int], QIcon] = {}
         doc.changed.connect(self.refresh)
@@ -136,8 +188,9 @@ class Palette(QWidget):
                 tile = project.tiles[tile_id]
                 item = QListWidgetItem(self._icon(tile), tile.name)
                 item.setData(Qt.ItemDataRole.UserRole, tile_id)
-                item.setToolTip(f"{tile.name}: {tile.duration:.3g} {project.unit}")
+                item.setToolTip(f"{tile.name}: {axis_text(tile.duration, project.axis, '.3g')}")
                 tiles.addItem(item)
+            tiles.fit_grid()
             self.tabs.addTab(tiles, tab.name)
             if tab.name == current:
                 self.tabs.setCurrentWidget(tiles)
@@ -175,3 +228,58 @@ class Palette(QWidget):
     def remove_tab(self) -> None:
         """Remove the current user tab (its tiles stay in the library)."""
         self.doc.apply("remove palette tab", edits.remove_tab, self.current_tab())
+
+    def save_tile_dialog(self) -> None:
+        """Ask where to save the selected tile, then save it."""
+        tile = self.doc.project.tiles.get(self.doc.selected_tile or "")
+        if tile is None:
+            self.doc.message.emit("select a tile in the palette to save it", "error")
+            return
+        name, chosen = QFileDialog.getSaveFileName(
+            self, "Save tile", tile.name, ";;".join(TILE_FILTERS)
+        )
+        if name:
+            path = Path(name)
+            self.save_tile(path if path.suffix else path.with_suffix(TILE_FILTERS.get(chosen, "")))
+
+    def save_tile(self, path: Path) -> bool:
+        """Write the selected tile to a file (its format from the extension) at the project rate."""
+        tile = self.doc.project.tiles[self.doc.selected_tile]
+        try:
+            exporting.export_tile(tile, path, rate=self.doc.project.rate)
+        except HapticTimelineError as exc:
+            self.doc.message.emit(str(exc), "error")
+            return False
+        self.doc.message.emit(f"saved tile {tile.name} to {path.name}", "info")
+        return True
+
+    def load_tile_dialog(self) -> None:
+        """Ask for a tile file, then load it into the current tab."""
+        name, _ = QFileDialog.getOpenFileName(
+            self, "Load tile", "", "Tiles (*.mat *.txt *.csv *.wav *.flac *.ogg *.aiff)"
+        )
+        if name:
+            self.load_tile(Path(name))
+
+    def load_tile(self, path: Path) -> list[str] | None:
+        """Read a file's tiles into the current tab (one undo step); returns the new tile ids."""
+        tab = self.current_tab()
+        try:
+            imported = importing.read_file(path)
+        except HapticTimelineError as exc:
+            self.doc.message.emit(str(exc), "error")
+            return None
+        tiles = list({id(p.tile): p.tile for p in imported.placements}.values())
+
+        def add_all(project: Project) -> tuple[Project, list[str]]:
+            ids = []
+            for tile in tiles:
+                project, tile_id = edits.add_tile(project, tile, tab)
+                ids.append(tile_id)
+            return project, ids
+
+        ids = self.doc.apply(f"load tile {path.name}", add_all)
+        if ids:
+            self.doc.select_tile(ids[-1])
+            self.doc.message.emit(f"loaded {path.name} into {tab}", "info")
+        return ids

@@ -27,6 +27,7 @@ from .timeline_scene import TimelineScene
 
 SNAP_PX = 8.0
 ZOOM_STEP = 1.25
+FIT_MARGIN_PX = 12  # room after the project's end when fitted, so the last edge can be grabbed
 
 CURSORS = {
     "left": Qt.CursorShape.SizeHorCursor,
@@ -114,7 +115,7 @@ class TimelineView(QGraphicsView):
     def fit(self) -> None:
         """Zoom so the whole project fits the width."""
         duration = self.doc.project.duration or 1.0
-        width = max(100, self.viewport().width() - 40)
+        width = max(100, self.viewport().width() - FIT_MARGIN_PX)
         self.geometry.px_per_unit = width / duration
         self.refresh()
         self.horizontalScrollBar().setValue(0)

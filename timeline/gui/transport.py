@@ -14,6 +14,7 @@ from PySide6.QtWidgets import (
 
 from timeline.devices import HAND_MODES, Hand
 
+from .geometry import axis_text
 from .player import Player
 from .scope import Scope
 
@@ -38,8 +39,10 @@ class Transport(QWidget):
         self.hand.addItems(list(HAND_MODES))
         self.hand.setToolTip("What the simulated hand does while playing")
         self.hand.currentTextChanged.connect(self._set_hand)
-        self.where = QLabel("0.000")
+        self.where = QLabel()
         self.where.setMinimumWidth(70)
+        self.where.setToolTip("Where the playhead is")
+        self.show_position(0.0, "time")
         self.scope = Scope()
         row = QHBoxLayout()
         for widget in (self.play_button, self.loop, self.selected_only):
@@ -49,6 +52,7 @@ class Transport(QWidget):
         row.addWidget(self.device)
         row.addWidget(QLabel("hand"))
         row.addWidget(self.hand)
+        row.addWidget(QLabel("playhead"))
         row.addWidget(self.where)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 2, 4, 2)
@@ -63,3 +67,7 @@ class Transport(QWidget):
     def show_playing(self, playing: bool) -> None:
         """Show the Play button's state."""
         self.play_button.setText("■ Stop" if playing else "▶ Play")
+
+    def show_position(self, u: float, axis: str) -> None:
+        """Show the playhead position in seconds, or degrees in a position project."""
+        self.where.setText(axis_text(u, axis, ".3f" if axis == "time" else ".1f"))

@@ -22,6 +22,7 @@ from timeline.tiles import SplineTile, Tile
 
 from .clip_shape import tile_samples
 from .document import Document
+from .geometry import axis_text, display_factor
 from .palette import RANGE_MIME
 
 PICK_PX = 8.0
@@ -121,7 +122,7 @@ class Canvas(QWidget):
         painter.setPen(QColor("#444444"))
         painter.drawText(
             QPointF(MARGIN + 2, 12),
-            f"{tile.name} · {tile.duration:.4g} {self.editor.doc.project.unit}",
+            f"{tile.name} · {axis_text(tile.duration, self.editor.doc.project.axis)}",
         )
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
@@ -263,9 +264,12 @@ class WaveformEditor(QWidget):
             widget.setEnabled(editable and self.point is not None)
         self.copy_button.setEnabled(tile is not None)
         self.to_palette.setEnabled(tile is not None and self.range[1] > self.range[0])
+        axis = self.doc.project.axis
+        self.t_box.setPrefix("t " if axis == "time" else "θ ")
+        self.t_box.setSuffix(" s" if axis == "time" else "°")
         if editable and self.point is not None:
             t, v = tile.points[self.point]
-            for box, value in ((self.t_box, t), (self.v_box, v)):
+            for box, value in ((self.t_box, t * display_factor(axis)), (self.v_box, v)):
                 box.blockSignals(True)
                 box.setValue(value)
                 box.blockSignals(False)
@@ -287,7 +291,7 @@ class WaveformEditor(QWidget):
             tile_edits.move_point,
             self.tile_id,
             self.point,
-            self.t_box.value(),
+            self.t_box.value() / display_factor(self.doc.project.axis),
             self.v_box.value(),
         )
 
