@@ -15,9 +15,22 @@ from timeline.tiles import generator  # noqa: E402
 
 @pytest.fixture(autouse=True)
 def data_home(tmp_path, monkeypatch):
-    """Autosaves and recent files go to a temporary folder."""
+    """Autosaves go to a temporary folder."""
     monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "data"))
     return tmp_path / "data"
+
+
+@pytest.fixture(autouse=True)
+def settings_home(qapp, tmp_path):
+    """QSettings (recent files) go to an ini file under a temporary folder, as a test app."""
+    from PySide6.QtCore import QSettings
+
+    folder = tmp_path / "settings"
+    qapp.setOrganizationName("haptic-timeline-tests")
+    qapp.setApplicationName("editor-tests")
+    QSettings.setDefaultFormat(QSettings.Format.IniFormat)
+    QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope, str(folder))
+    return folder
 
 
 def two_track_project() -> tuple[Project, dict[str, str]]:

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
-from PySide6.QtCore import QPoint, QPointF, Qt
+from PySide6.QtCore import QEvent, QMimeData, QPoint, QPointF, Qt
+from PySide6.QtGui import QDragEnterEvent, QDragMoveEvent, QDropEvent
 from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QApplication
 
 NO = Qt.KeyboardModifier.NoModifier
 
@@ -33,3 +35,13 @@ def drag(win, start: QPoint, end: QPoint, modifiers=NO, steps: int = 5) -> None:
 
 def click(win, at: QPoint, modifiers=NO) -> None:
     QTest.mouseClick(win.view.viewport(), Qt.MouseButton.LeftButton, modifiers, at)
+
+
+def send_drop(win, mime: QMimeData, at: QPoint) -> None:
+    """What Qt delivers to the lanes while something is dragged over them and released."""
+    vp = win.view.viewport()
+    copy = Qt.DropAction.CopyAction
+    nobutton = Qt.MouseButton.NoButton
+    QApplication.sendEvent(vp, QDragEnterEvent(at, copy, mime, nobutton, NO))
+    QApplication.sendEvent(vp, QDragMoveEvent(at, copy, mime, nobutton, NO))
+    QApplication.sendEvent(vp, QDropEvent(QPointF(at), copy, mime, nobutton, NO, QEvent.Type.Drop))

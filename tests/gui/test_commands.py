@@ -3,16 +3,15 @@
 from __future__ import annotations
 
 import pytest
-from PySide6.QtCore import QEvent as E
 from PySide6.QtCore import QPoint, QPointF, Qt
-from PySide6.QtGui import QDragEnterEvent, QDragMoveEvent, QDropEvent, QWheelEvent
+from PySide6.QtGui import QWheelEvent
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication
 
 from timeline.gui.gestures.palette_drop import tile_mime
 from timeline.tiles import SplineTile
 
-from .helpers import click, clip_point, view_point
+from .helpers import click, clip_point, send_drop, view_point
 
 CTRL = Qt.KeyboardModifier.ControlModifier
 PX = 200.0
@@ -20,17 +19,6 @@ PX = 200.0
 
 def key(win, k, mods=Qt.KeyboardModifier.NoModifier) -> None:
     QTest.keyClick(win, k, mods)
-
-
-def send_drop(win, mime, at: QPoint) -> None:
-    """What Qt delivers while a palette tile is dragged over the lanes and released."""
-    vp = win.view.viewport()
-    copy = Qt.DropAction.CopyAction
-    nobutton = Qt.MouseButton.NoButton
-    mods = Qt.KeyboardModifier.NoModifier
-    QApplication.sendEvent(vp, QDragEnterEvent(at, copy, mime, nobutton, mods))
-    QApplication.sendEvent(vp, QDragMoveEvent(at, copy, mime, nobutton, mods))
-    QApplication.sendEvent(vp, QDropEvent(QPointF(at), copy, mime, nobutton, mods, E.Type.Drop))
 
 
 def test_palette_drop_makes_a_clip_on_that_track(window):

@@ -7,6 +7,8 @@ from pathlib import Path
 
 from timeline import projectfile
 
+ORGANISATION = "haptic-timeline"  # QSettings (recent files) live under this name
+
 
 def run(path: str | None = None) -> int:
     """Open the editor (on a project file, or a new project) and run until it closes."""
@@ -16,6 +18,7 @@ def run(path: str | None = None) -> int:
 
     project = projectfile.load(path) if path and Path(path).exists() else None
     app = QApplication.instance() or QApplication(sys.argv[:1])
+    app.setOrganizationName(ORGANISATION)
     app.setApplicationName("haptic-timeline")
     window = MainWindow(project, Path(path) if path else None)
     window.show()

@@ -19,7 +19,7 @@ IDLE_MS = 3000
 
 
 def data_dir() -> Path:
-    """The editor's folder in the user data directory (autosaves, recent files)."""
+    """The editor's folder in the user data directory (autosaves)."""
     path = Path(platformdirs.user_data_dir("haptic-timeline"))
     path.mkdir(parents=True, exist_ok=True)
     return path

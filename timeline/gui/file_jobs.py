@@ -80,9 +80,7 @@ def export_job(project: Project, path: Path) -> FileJob:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
         os.close(fd)
         try:
-            progress(0.0)
-            exporting.export_project(project, tmp)
-            progress(1.0)
+            exporting.export_project(project, tmp, progress=progress)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise

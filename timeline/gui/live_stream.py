@@ -3,6 +3,10 @@
 Qt-free. The stream is what a device's `play` pulls block by block; `set_project` only swaps a
 reference, and the next block pulled is rendered from the new state (mixer caches make that a
 re-sum of the touched blocks), so an edit is felt within about one block period.
+
+A position project plays as tables over angle (LiveTables); an edit rebuilds the tables and swaps
+them in, and a device that reads the program's `table` at every chunk (the sim: every 50 ms)
+plays the new ones from its next chunk.
 """
 
 from __future__ import annotations
@@ -14,7 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from timeline.devices import CoefficientBlock
+from timeline import playback
+from timeline.devices import CoefficientBlock, PositionProgram, PositionTable
+from timeline.errors import HapticTimelineError
 from timeline.kinds import track_kind
 from timeline.mixer import Mixer
 from timeline.model import Project
@@ -125,3 +131,17 @@ class LiveStream:
 
 def _has_mass(project: Project) -> bool:
     return any(track_kind(t.kind).term == "m" and t.clips for t in project.tracks)
+
+
+class LiveTables(PositionProgram):
+    """A position program whose tables an edit replaces while it plays."""
+
+    def set_project(self, project: Project) -> None:
+        """Play the tables of a new project state (silence if it has no clips left)."""
+        try:
+            table, _ = playback.position_table(project)
+        except HapticTimelineError:
+            table = PositionTable(self.table.start, self.table.rate, np.zeros(1))
+        # The program is frozen for every other holder; swapping this one reference is the
+        # whole of the live update, and a device reads it whole at its next chunk.
+        object.__setattr__(self, "table", table)

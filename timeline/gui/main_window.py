@@ -19,7 +19,7 @@ from PySide6.QtWidgets import (
 
 from timeline import edits, importing, projectfile
 from timeline.errors import HapticTimelineError
-from timeline.formats import all_formats
+from timeline.formats import Imported, all_formats
 from timeline.model import Project
 from timeline.templates import template_tiles
 
@@ -47,6 +47,11 @@ def fresh_project(axis: str = "time") -> Project:
         project, _ = edits.add_tile(project, tile, "Templates")
     project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
     return project
+
+
+def kind_free(imported: Imported) -> bool:
+    """Whether an import is bare tiles (no tracks of its own), to go on the track chosen."""
+    return not imported.tracks and all(p.kind is None and not p.track for p in imported.placements)
 
 
 class MainWindow(QMainWindow):
@@ -217,6 +222,8 @@ class MainWindow(QMainWindow):
             self.recent_menu.addAction(str(path)).triggered.connect(
                 lambda _=False, p=path: self.open_path(p)
             )
+        if self.recent_menu.isEmpty():
+            self.recent_menu.addAction("(no recent projects)").setEnabled(False)
 
     # --- clip commands (each one undo step) ------------------------------------------------
 
@@ -416,21 +423,27 @@ class MainWindow(QMainWindow):
 
     def import_files(self, paths: list[Path], track_id: str, at: float) -> None:
         """Import files in the background onto a track (its kind gives them meaning)."""
-        kind = self.doc.project.track(track_id).kind if track_id else importing.DEFAULT_KIND
         for path in paths:
             job = import_job(path)
             job.done.connect(
-                lambda imported, j=job, p=path: self._imported(j, p, imported, kind, at)
+                lambda imported, j=job, p=path: self._imported(j, p, imported, track_id, at)
             )
             self._start(job, f"importing {path.name}…")
 
-    def _imported(self, job: FileJob, path: Path, imported, kind: str, at: float) -> None:
+    def _imported(self, job: FileJob, path: Path, imported, track_id: str, at: float) -> None:
         self._finish(job)
         if job.cancelled:
             self.messages.show_message("import cancelled; nothing was changed")
             return
+        project = self.doc.project
+        target = next((t for t in project.tracks if t.id == track_id), None)
+        kind = target.kind if target else importing.DEFAULT_KIND
         try:
-            project, clip_ids = importing.place(self.doc.project, imported, kind=kind, at=at)
+            project, clip_ids = importing.place(project, imported, kind=kind, at=at)
+            if target and kind_free(imported):
+                # place() puts a bare tile on the first track of the kind; the user chose one
+                for clip_id in clip_ids:
+                    project = edits.move_clip(project, clip_id, track_id=track_id)
         except HapticTimelineError as exc:
             self.messages.show_message(str(exc), "error")
             return

@@ -1,7 +1,8 @@
 """Play the project on a device in a worker thread, follow edits live, report telemetry.
 
 Time projects stream through LiveStream, so an edit is felt at the next block. Position projects
-play their tables for a hand-turn sweep (edits take effect at the next Play).
+play their tables (LiveTables) for a hand-turn sweep; an edit rebuilds the tables and the sim
+plays them from its next 50 ms chunk.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from timeline.devices import Device, Hand, LiveTelemetry, device_names, open_dev
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
 
-from .live_stream import LiveStream
+from .live_stream import LiveStream, LiveTables
 
 
 class Player(QObject):
@@ -37,6 +38,7 @@ class Player(QObject):
         self.device_name = "sim"
         self.device: Device | None = None
         self.stream: LiveStream | None = None
+        self.tables: LiveTables | None = None
         self.hand = Hand("hold")
         self._thread: threading.Thread | None = None
         self._parts: deque[LiveTelemetry] = deque(maxlen=200)
@@ -80,9 +82,11 @@ class Player(QObject):
         self.stop()
         try:
             device = self._open()
+            self.stream = self.tables = None
             if project.axis == "position":
-                program, _ = playback.position_program(project, hand=Hand("turn"))
-                hand, self.stream = Hand("turn"), None
+                sweep, _ = playback.position_program(project, hand=Hand("turn"))
+                self.tables = LiveTables(sweep.table, sweep.duration, sweep.origin)
+                program, hand = self.tables, Hand("turn")
             else:
                 stop = project.duration if stop is None else stop
                 if stop <= start:
@@ -130,8 +134,12 @@ class Player(QObject):
 
     def follow(self, project: Project) -> None:
         """Hand a new project state to the running stream (edit-to-feel starts here)."""
-        if self.stream is not None and self.playing:
+        if not self.playing:
+            return
+        if self.stream is not None:
             self.stream.set_project(project)
+        elif self.tables is not None:
+            self.tables.set_project(project)
 
     def stop(self) -> None:
         """Stop playing and wait for the device to finish its block."""
