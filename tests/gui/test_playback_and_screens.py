@@ -1,14 +1,17 @@
-"""Playing on the sim follows edits live; screenshots of the examples for people to look at."""
+"""Playing on the sim follows edits live (time and position projects); screenshots to look at."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QMessageBox
 
 from timeline import edits, projectfile
+from timeline.tiles import generator
 
 ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "test-output" / "gui"
@@ -48,4 +51,29 @@ def test_screenshot(qtbot, name):
     path = OUT / f"{name}.png"
     assert win.grab().save(str(path))
     assert path.stat().st_size > 10_000
+    win.player.close()
+
+
+def test_position_playback_follows_edits_live(qtbot):
+    from timeline.gui.main_window import MainWindow
+
+    project = edits.new_project("position")
+    project, tile = edits.add_tile(project, generator("constant", 2 * math.pi), "Scratch")
+    project, track = edits.add_track(project, "torque")
+    project, clip = edits.add_clip(project, track, tile, 0.0, gain=0.25)  # 0.25 x 180 mNm
+    win = MainWindow(project)
+    win.ask_unsaved = lambda: QMessageBox.StandardButton.Discard
+    qtbot.addWidget(win)
+    win.show()
+    qtbot.waitExposed(win)
+    scope = win.transport.scope
+    QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)
+    assert win.player.playing
+    qtbot.waitUntil(
+        lambda: scope.tau.size > 5 and scope.tau[-1] == pytest.approx(45.0), timeout=5000
+    )
+    win.doc.apply("gain", edits.set_clip_gain, clip, 0.5)
+    qtbot.waitUntil(lambda: scope.tau[-1] == pytest.approx(90.0), timeout=1500)
+    win.doc.apply("remove", edits.remove_clips, [clip])
+    qtbot.waitUntil(lambda: scope.tau[-1] == pytest.approx(0.0, abs=1e-9), timeout=1500)
     win.player.close()

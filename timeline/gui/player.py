@@ -2,12 +2,14 @@
 
 Time projects stream through LiveStream, so an edit is felt at the next block. Position projects
 play their tables (LiveTables) for a hand-turn sweep; an edit rebuilds the tables and the sim
-plays them from its next 50 ms chunk.
+plays them from its next 50 ms chunk. The sim simulates a sweep faster than real time, so the
+player holds each chunk's telemetry until its time has come (and stops the sweep there).
 """
 
 from __future__ import annotations
 
 import threading
+import time
 from collections import deque
 from collections.abc import Iterable
 
@@ -20,6 +22,10 @@ from timeline.errors import HapticTimelineError
 from timeline.model import Project
 
 from .live_stream import LiveStream, LiveTables
+
+
+class _Stopped(HapticTimelineError):
+    """Stop was pressed during a position sweep."""
 
 
 class Player(QObject):
@@ -41,6 +47,8 @@ class Player(QObject):
         self.tables: LiveTables | None = None
         self.hand = Hand("hold")
         self._thread: threading.Thread | None = None
+        self._halt = threading.Event()
+        self._started = 0.0
         self._parts: deque[LiveTelemetry] = deque(maxlen=200)
         self._position: float | None = None
         self._outcome: str | None = None
@@ -98,6 +106,8 @@ class Player(QObject):
             self.finished.emit(str(exc))
             return
         self._outcome = None
+        self._halt.clear()
+        self._started = time.perf_counter()
         self._thread = threading.Thread(target=self._run, args=(device, program, hand), daemon=True)
         self._thread.start()
         self._poll.start()
@@ -105,6 +115,8 @@ class Player(QObject):
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:
             device.play(program, hand, monitor=self._part)
+        except _Stopped:
+            pass
         except HapticTimelineError as exc:
             self._outcome = str(exc)
             return
@@ -116,6 +128,10 @@ class Player(QObject):
     def _part(self, part: LiveTelemetry) -> None:
         if len(part):
             self._parts.append(part)
+        if self.tables is not None and len(part):
+            self._halt.wait(self._started + float(part.time[-1]) - time.perf_counter())
+            if self._halt.is_set():
+                raise _Stopped("stopped")
 
     def _drain(self) -> None:
         """GUI thread: pass on what the playing thread left behind."""
@@ -143,6 +159,7 @@ class Player(QObject):
 
     def stop(self) -> None:
         """Stop playing and wait for the device to finish its block."""
+        self._halt.set()
         if self.stream is not None:
             self.stream.stop_stream()
         if self._thread is not None:
