@@ -10,7 +10,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QMessageBox
 
-from timeline import edits, projectfile
+from timeline import edits
 from timeline.tiles import generator
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -36,17 +36,17 @@ def test_space_plays_on_the_sim_and_the_scope_fills(window, qtbot):
 def test_screenshot(qtbot, name):
     from timeline.gui.main_window import MainWindow
 
-    win = MainWindow(
-        projectfile.load(ROOT / "projects" / f"{name}.htl"), ROOT / "projects" / f"{name}.htl"
-    )
+    win = MainWindow()
     qtbot.addWidget(win)
     win.resize(1400, 860)
     win.show()
     qtbot.waitExposed(win)
-    win.view.fit()
+    assert win.open_path(ROOT / "projects" / f"{name}.htl")
+    assert win.messages.text == f"opened {name}.htl"
     first = win.doc.project.tracks[0].clips[0]
     win.doc.select_clips([first.id])
     win.doc.select_tile(first.tile_id)
+    qtbot.wait(100)  # let the rebuilt track headers show, as the event loop would
     OUT.mkdir(parents=True, exist_ok=True)
     path = OUT / f"{name}.png"
     assert win.grab().save(str(path))
