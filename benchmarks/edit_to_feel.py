@@ -56,6 +56,11 @@ def main() -> None:
     win.transport.loop.setChecked(True)
     win.play_stop()
     stream = win.player.stream
+    # Time edits during steady play: wait for the device's first telemetry, so a one-off start-up
+    # cost (the sim loading its compiled servo loop) is not counted as an edit's latency.
+    while not win.transport.scope.tau.size:
+        app.processEvents()
+        time.sleep(0.005)
     latencies = []
     vp = win.view.viewport()
     track = win.doc.project.tracks[0]
