@@ -60,7 +60,7 @@ class MainWindow(QMainWindow):
     def __init__(self, project: Project | None = None, path: Path | None = None) -> None:
         super().__init__()
         self.doc = Document(project or fresh_project(), path)
-        self.player = Player()
+        self.player = Player(self)
         self.jobs: list[FileJob] = []
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self._build()

@@ -39,8 +39,8 @@ class Player(QObject):
     position = Signal(float)
     finished = Signal(str)  # "" or an error sentence
 
-    def __init__(self) -> None:
-        super().__init__()
+    def __init__(self, parent: QObject | None = None) -> None:
+        super().__init__(parent)
         self.device_name = "sim"
         self.device: Device | None = None
         self.stream: LiveStream | None = None
@@ -167,8 +167,9 @@ class Player(QObject):
             self._thread = None
 
     def close(self) -> None:
-        """Stop and release the device."""
+        """Stop, release the device and report nothing more (the window is closing)."""
         self.stop()
+        self._poll.stop()
         if self.device is not None:
             self.device.close()
             self.device = None
