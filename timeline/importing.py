@@ -89,21 +89,31 @@ def place(
     kind: str = DEFAULT_KIND,
     at: float = 0.0,
     gain: float = 1.0,
+    track_id: str | None = None,
 ) -> tuple[Project, list[str]]:
-    """Add an import's tiles to the palette and its placements as clips (see import_file)."""
+    """Add an import's tiles to the palette and its placements as clips (see import_file).
+
+    With `track_id`, placements that name no kind or track of their own (a recording, a table)
+    go on that track, and its kind gives them meaning.
+    """
+    if track_id is not None:
+        kind = project.track(track_id).kind
     infos = {t.key: t for t in imported.tracks}
     targets: dict[tuple[str, str], str] = {}  # (kind, source track name) -> project track id
     tile_ids: dict[int, str] = {}  # id(tile) -> project tile id: a tile placed twice is added once
     clip_ids: list[str] = []
     for placement in imported.placements:
-        track_kind_id = placement.kind or kind
-        project, track_id = _target_track(project, track_kind_id, placement.track, targets, infos)
+        if track_id is not None and placement.kind is None and not placement.track:
+            target = track_id
+        else:
+            kind_id = placement.kind or kind
+            project, target = _target_track(project, kind_id, placement.track, targets, infos)
         if id(placement.tile) not in tile_ids:
             project, tile_ids[id(placement.tile)] = edits.add_tile(project, placement.tile)
         fields = dict(placement.clip)
         fields["gain"] = gain * fields.get("gain", 1.0)
         project, clip_id = edits.add_clip(
-            project, track_id, tile_ids[id(placement.tile)], at + placement.start, **fields
+            project, target, tile_ids[id(placement.tile)], at + placement.start, **fields
         )
         clip_ids.append(clip_id)
     return project, clip_ids

@@ -184,3 +184,19 @@ def test_export_picks_a_subtype_each_container_can_hold(tmp_path):
         assert sf.info(str(tmp_path / f"x.{ext}")).subtype == subtype
     data, rate = sf.read(str(tmp_path / "x.flac"))
     assert rate == 10_000 and abs(data.max() - 0.18) < 1e-6  # 24-bit keeps the peak
+
+
+def test_place_on_a_chosen_track_uses_that_tracks_kind(tmp_path):
+    from timeline import edits, render
+    from timeline.importing import import_file, place, read_file
+
+    path = tmp_path / "tone.wav"
+    sf.write(str(path), np.full(100, 0.5), 10_000, subtype="DOUBLE")
+    p = edits.new_project(templates=False)
+    p, first = edits.add_track(p, "drive")
+    p, second = edits.add_track(p, "stiffness")
+    p2, clips = place(p, read_file(path), at=0.01, track_id=second)
+    assert p2.find_clip(clips[0])[0].id == second
+    assert render(p2)["stiffness"][100] == 0.5  # stiffness full scale 1 N*m/rad
+    p3, clips = import_file(p, path)  # no track chosen: the first drive track
+    assert p3.find_clip(clips[0])[0].id == first

@@ -19,7 +19,7 @@ from PySide6.QtWidgets import (
 
 from timeline import edits, importing, projectfile
 from timeline.errors import HapticTimelineError
-from timeline.formats import Imported, all_formats
+from timeline.formats import all_formats
 from timeline.model import Project
 from timeline.templates import template_tiles
 
@@ -47,11 +47,6 @@ def fresh_project(axis: str = "time") -> Project:
         project, _ = edits.add_tile(project, tile, "Templates")
     project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
     return project
-
-
-def kind_free(imported: Imported) -> bool:
-    """Whether an import is bare tiles (no tracks of its own), to go on the track chosen."""
-    return not imported.tracks and all(p.kind is None and not p.track for p in imported.placements)
 
 
 class MainWindow(QMainWindow):
@@ -436,14 +431,9 @@ class MainWindow(QMainWindow):
             self.messages.show_message("import cancelled; nothing was changed")
             return
         project = self.doc.project
-        target = next((t for t in project.tracks if t.id == track_id), None)
-        kind = target.kind if target else importing.DEFAULT_KIND
+        chosen = track_id if any(t.id == track_id for t in project.tracks) else None
         try:
-            project, clip_ids = importing.place(project, imported, kind=kind, at=at)
-            if target and kind_free(imported):
-                # place() puts a bare tile on the first track of the kind; the user chose one
-                for clip_id in clip_ids:
-                    project = edits.move_clip(project, clip_id, track_id=track_id)
+            project, clip_ids = importing.place(project, imported, at=at, track_id=chosen)
         except HapticTimelineError as exc:
             self.messages.show_message(str(exc), "error")
             return
