@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -9,7 +10,7 @@ from pathlib import Path
 from timeline.cli.main import main
 
 PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_speed")
-TITLES = ("Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
+TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
           "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency")  # fmt: skip
 
 
@@ -25,6 +26,7 @@ def test_quick_bench_prints_tables_and_writes_plots(tmp_path: Path) -> None:
     assert done.stdout.count("target:") >= 4  # mixer (2), sim speed, edit-to-feel
     tables = (out / "tables.md").read_text()
     assert all(f"## {title}" in tables for title in TITLES)
+    assert re.search(r"\|\s*fan_knob\.htl\s*\|\s*position\s*\|\s*84000\s*\|", tables)
     for name in PLOTS:
         png = out / f"{name}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
@@ -39,5 +41,5 @@ def test_unknown_benchmark_is_one_sentence(capsys) -> None:
 def test_list_names_every_benchmark(capsys) -> None:
     assert main(["bench", "--list"]) == 0
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
-    assert names == ["mixer", "quality", "resampler", "integrators", "sim-speed", "accumulation",
-                     "edit-to-feel"]  # fmt: skip
+    assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
+                     "accumulation", "edit-to-feel"]  # fmt: skip

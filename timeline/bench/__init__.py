@@ -11,6 +11,7 @@ import importlib
 from types import ModuleType
 
 MODULES = (
+    "timeline.bench.examples",
     "timeline.bench.mixer_speed",
     "timeline.bench.quality_presets",
     "timeline.bench.resampler",
