@@ -152,7 +152,7 @@ class KnobPhysics:
     def _run_table(
         self, program: PositionProgram, n: int, gain: np.ndarray | None = None
     ) -> Telemetry:
-        table = program.table
+        table = program.table_now()
         tel = self._run(n, table=(table, program.origin), gain=gain)
         where = program.origin + tel.angle
         grid = table.angles()

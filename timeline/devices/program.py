@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -142,10 +142,19 @@ class PositionProgram:
     table: PositionTable
     duration: float
     origin: float = 0.0
+    live: Callable[[], PositionTable] | None = None  # tables that edits may replace while playing
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.duration) and self.duration > 0):
             raise DeviceError(f"a position program needs a positive duration, not {self.duration}")
+
+    def table_now(self) -> PositionTable:
+        """The tables to render from now on: the live source's latest, else the fixed table.
+
+        A device reads this once per chunk it simulates or sends, so an edit is felt at the
+        next chunk.
+        """
+        return self.table if self.live is None else self.live()
 
 
 Program = Iterable[CoefficientBlock] | PositionProgram

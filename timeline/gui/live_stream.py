@@ -14,7 +14,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -133,15 +133,21 @@ def _has_mass(project: Project) -> bool:
     return any(track_kind(t.kind).term == "m" and t.clips for t in project.tracks)
 
 
-class LiveTables(PositionProgram):
-    """A position program whose tables an edit replaces while it plays."""
+class LiveTables:
+    """Position tables that edits replace while they play: the `live` source of a program."""
+
+    def __init__(self, sweep: PositionProgram) -> None:
+        self._table = sweep.table
+        self.program = replace(sweep, live=self.current)
+
+    def current(self) -> PositionTable:
+        """The newest tables (a device asks once per chunk)."""
+        return self._table
 
     def set_project(self, project: Project) -> None:
         """Play the tables of a new project state (silence if it has no clips left)."""
         try:
             table, _ = playback.position_table(project)
         except HapticTimelineError:
-            table = PositionTable(self.table.start, self.table.rate, np.zeros(1))
-        # The program is frozen for every other holder; swapping this one reference is the
-        # whole of the live update, and a device reads it whole at its next chunk.
-        object.__setattr__(self, "table", table)
+            table = PositionTable(self._table.start, self._table.rate, np.zeros(1))
+        self._table = table  # one reference swap: a device reads the whole table or the old one

@@ -93,8 +93,8 @@ class Player(QObject):
             self.stream = self.tables = None
             if project.axis == "position":
                 sweep, _ = playback.position_program(project, hand=Hand("turn"))
-                self.tables = LiveTables(sweep.table, sweep.duration, sweep.origin)
-                program, hand = self.tables, Hand("turn")
+                self.tables = LiveTables(sweep)
+                program, hand = self.tables.program, Hand("turn")
             else:
                 stop = project.duration if stop is None else stop
                 if stop <= start:
