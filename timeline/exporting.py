@@ -11,14 +11,13 @@ callback that raises stops the export, and nothing is left behind.
 from __future__ import annotations
 
 import os
-import tempfile
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from timeline import mixer
+from timeline.atomic import write_atomically
 from timeline.errors import HapticTimelineError
 from timeline.formats import FormatError, Layers, Progress, writer_for
 from timeline.model import Project
@@ -76,19 +75,10 @@ def tile_layers(tile: Tile, rate: float | None = None, name: str = "value") -> L
     return Layers({name: tile.render(0.0, 1.0 / rate, n, preset("exact"))}, float(rate))
 
 
-def write_atomically(path: Path, write: Callable[[Path], None]) -> None:
-    """Call write(temporary path) and rename the result onto path; on failure remove it."""
+def _check_folder(path: Path) -> None:
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise FormatError(f"cannot write {path}: the folder {folder} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=folder)
-    os.close(fd)
-    try:
-        write(Path(tmp))
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def export_project(
@@ -146,6 +136,7 @@ def export_tile(
 
 def _write(fmt: Any, source: Any, path: Path, options: dict[str, Any]) -> None:
     try:
+        _check_folder(path)
         write_atomically(path, lambda tmp: fmt.write(source, tmp, **options))
     except HapticTimelineError:
         raise

@@ -10,7 +10,6 @@ from __future__ import annotations
 import base64
 import json
 import os
-import tempfile
 import zlib
 from collections.abc import Callable
 from pathlib import Path
@@ -19,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from timeline.atomic import write_atomically
 from timeline.errors import HapticTimelineError, ProjectFileError
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
@@ -146,42 +146,10 @@ def dumps(project: Project) -> str:
         raise ProjectFileError(f"the project cannot be saved: {exc}") from None
 
 
-def _file_mode(path: Path) -> int:
-    """Keep an existing file's permissions; a new file gets the usual 0666 less the umask."""
-    try:
-        return path.stat().st_mode & 0o777
-    except OSError:
-        umask = os.umask(0)
-        os.umask(umask)
-        return 0o666 & ~umask
-
-
 def save(project: Project, path: str | os.PathLike) -> None:
     """Write the project atomically: the old file stays intact until the new one is complete."""
-    path = Path(path)
     text = dumps(project).encode("utf-8")
-    folder = path.parent if str(path.parent) else Path(".")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
-    try:
-        os.chmod(tmp, _file_mode(path))
-        with os.fdopen(fd, "wb") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    try:
-        dir_fd = os.open(folder, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(dir_fd)
-    except OSError:
-        pass
-    finally:
-        os.close(dir_fd)
+    write_atomically(path, lambda tmp: tmp.write_bytes(text))
 
 
 # --- reading -----------------------------------------------------------------------------------

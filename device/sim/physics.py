@@ -13,6 +13,7 @@ arrive (watchdog).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 from scipy.signal import lfilter
@@ -264,15 +265,8 @@ def _floats(*values: float) -> tuple[float, ...]:
 
 def _with(tel: Telemetry, layers: dict[str, np.ndarray], flags: list[StabilityFlag]) -> Telemetry:
     n = len(tel)
-    return Telemetry(
-        tel.rate,
-        tel.time,
-        tel.angle,
-        tel.velocity,
-        tel.torque,
-        tel.energy,
-        tel.saturated,
-        {k: np.asarray(v, dtype=np.float64)[:n] for k, v in layers.items()},
-        tel.flags + tuple(f for f in flags),
-        tel.warnings,
+    return replace(
+        tel,
+        layers={k: np.asarray(v, dtype=np.float64)[:n] for k, v in layers.items()},
+        flags=tel.flags + tuple(flags),
     )

@@ -8,9 +8,10 @@ from pathlib import Path
 
 import numpy as np
 
+from timeline.atomic import write_atomically
 from timeline.cli.options import add_range_options, parse_tracks
 from timeline.errors import HapticTimelineError
-from timeline.exporting import write_atomically, write_layers
+from timeline.exporting import write_layers
 from timeline.formats import Layers
 from timeline.mixer import render
 from timeline.projectfile import load
