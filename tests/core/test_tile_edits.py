@@ -50,3 +50,19 @@ def test_range_to_palette_and_editable_copy():
     points = p3.tile(copy).points
     assert len(points) == tile_edits.EDITABLE_POINTS
     assert points[-1] == pytest.approx((1.0, 1.0))
+
+
+def test_remove_and_rename_tiles_and_variants():
+    p, clip = one_clip(generator("sine", 1.0))
+    used = p.find_clip(clip)[1].tile_id
+    with pytest.raises(EditError, match="used by 1 clip"):
+        edits.remove_tile(p, used)
+    p, spare = edits.add_tile(p, generator("ramp", 1.0))
+    gone = edits.remove_tile(p, spare)
+    assert spare not in gone.tiles and spare not in gone.tab("Scratch").tile_ids
+    assert edits.rename_tile(p, used, "hum").tile(used).name == "hum"
+    p = edits.save_variant(p, "A")
+    q = edits.remove_variant(p, "A")
+    assert q.variants == () and q.active_variant is None
+    with pytest.raises(EditError, match="no variant"):
+        edits.switch_variant(q, "A")
