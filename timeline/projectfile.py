@@ -108,12 +108,19 @@ def _track_to_json(track: Track) -> dict[str, Any]:
     }
 
 
+def _id_order(item_id: str) -> tuple[str, int, str]:
+    """Ids like tile9 before tile10: prefix, then number, then the id itself."""
+    stem = item_id.rstrip("0123456789")
+    digits = item_id[len(stem) :]
+    return (stem, int(digits) if digits else -1, item_id)
+
+
 def to_json(project: Project) -> dict[str, Any]:
     """The project as a JSON-ready dict (schema SCHEMA)."""
     media: dict[str, Any] = {}
 
-    def tiles(mapping) -> dict[str, Any]:
-        return {k: _tile_to_json(v, media) for k, v in mapping.items()}
+    def tiles(mapping) -> dict[str, Any]:  # in id order, so a saved file's bytes are stable
+        return {k: _tile_to_json(mapping[k], media) for k in sorted(mapping, key=_id_order)}
 
     body = {
         "axis": project.axis,
