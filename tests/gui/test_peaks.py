@@ -20,10 +20,8 @@ def _direct(data: np.ndarray, pyramid: PeakPyramid, first: float, last: float, c
     edges = np.linspace(first, last, count + 1)
     starts = np.clip(np.floor(edges[:-1] / block).astype(np.int64), 0, blocks - 1)
     stop = max(int(np.clip(np.ceil(last / block), 1, blocks)), int(starts[-1]) + 1)
-    if per_column < block:
-        stops = starts + 1
-    else:
-        stops = np.maximum(np.r_[starts[1:], stop], starts + 1)
+    following = np.maximum(np.r_[starts[1:], stop], starts + 1)
+    stops = starts + 1 if per_column < block else following
     lo = [data[a * block : z * block].min() for a, z in zip(starts, stops, strict=True)]
     hi = [data[a * block : z * block].max() for a, z in zip(starts, stops, strict=True)]
     return np.array(lo), np.array(hi)
