@@ -18,6 +18,7 @@ from timeline.errors import EditError
 from timeline.generators import GENERATORS
 from timeline.quality import QualityPreset
 from timeline.resample import sample_grid
+from timeline.splines import natural_cubic, pchip
 
 MAX_TILE_SAMPLES = 2**31  # ~16 GiB of float64; anything larger is refused as a hostile size
 
@@ -128,17 +129,13 @@ class SplineTile:
 
     @cached_property
     def _curve(self):
-        from scipy.interpolate import CubicSpline, PchipInterpolator
-
         t = np.array([p[0] for p in self.points])
         v = np.array([p[1] for p in self.points])
         if len(t) == 1:
             return lambda u: np.full(np.shape(u), v[0])
         if len(t) == 2:
             return lambda u: np.interp(u, t, v)
-        if self.method == "pchip":
-            return PchipInterpolator(t, v, extrapolate=False)
-        return CubicSpline(t, v, bc_type="natural", extrapolate=False)
+        return pchip(t, v) if self.method == "pchip" else natural_cubic(t, v)
 
     def evaluate(self, u: np.ndarray) -> np.ndarray:
         """Exact curve values; before the first point and after the last the end values hold."""
