@@ -21,13 +21,13 @@ import math
 import sys
 from collections import OrderedDict
 from collections.abc import Iterable, Iterator
-from dataclasses import astuple, dataclass, replace
+from dataclasses import astuple, dataclass
 from itertools import chain
 from typing import NamedTuple
 
 import numpy as np
 
-from timeline.clip_render import clip_sample_range, render_clip
+from timeline.clip_render import clip_sample_range, render_shape
 from timeline.errors import HapticTimelineError, RenderError
 from timeline.kinds import track_kind
 from timeline.model import Clip, Project, Track
@@ -412,8 +412,7 @@ class Mixer:
         if values is not None:
             return values
         self.stats.shape_renders += 1
-        unit = replace(p.clip, start=0.0, gain=1.0)
-        values = render_clip(unit, p.tile, p.pos0, grid.rate, p.i1 - p.i0, grid.quality)
+        values = render_shape(p.clip, p.tile, p.pos0, grid.rate, p.i1 - p.i0, grid.quality)
         values.setflags(write=False)
         self._shapes.put(p.shape, values, values.nbytes)
         return values

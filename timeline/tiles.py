@@ -40,6 +40,14 @@ def _evaluate_decimated(fn, u0: float, du: float, n: int, decimation: int) -> np
     return np.interp(np.arange(n), coarse_i, coarse)
 
 
+def _zero_outside(u: np.ndarray, values: np.ndarray, duration: float, lo: float,
+                  hi: float) -> np.ndarray:  # fmt: skip
+    """values where 0 <= u <= duration, else 0 (lo, hi: the range of u), shaped like u."""
+    if lo < 0 or hi > duration or values.shape != u.shape:
+        return np.where((u < 0) | (u > duration), 0.0, values)
+    return values
+
+
 @dataclass(frozen=True, eq=False)
 class SampledTile:
     """Samples at a rate (imports, merges, freehand drawing); sample k sits at k/rate."""
@@ -142,9 +150,13 @@ class SplineTile:
         u = np.asarray(u, dtype=np.float64)
         first, last = self.points[0], self.points[-1]
         out = np.asarray(self._curve(np.clip(u, first[0], last[0])), dtype=np.float64)
-        out = np.where(u <= first[0], first[1], out)
-        out = np.where(u >= last[0], last[1], out)
-        return np.where((u < 0) | (u > self.duration), 0.0, out)
+        lo, hi = (float(u.min()), float(u.max())) if u.size else (0.0, 0.0)
+        # each mask only where some u needs it (a clip's grid is usually inside the curve)
+        if lo <= first[0]:
+            out = np.where(u <= first[0], first[1], out)
+        if hi >= last[0]:
+            out = np.where(u >= last[0], last[1], out)
+        return _zero_outside(u, out, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
         return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
@@ -198,7 +210,8 @@ class GeneratorTile:
         with np.errstate(all="ignore"):
             values = GENERATORS[self.generator].function(u, self.duration, **dict(self.params))
         values = np.asarray(values, dtype=np.float64)
-        return np.where((u < 0) | (u > self.duration), 0.0, values)
+        lo, hi = (float(u.min()), float(u.max())) if u.size else (0.0, 0.0)
+        return _zero_outside(u, values, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
         return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
