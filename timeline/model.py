@@ -49,6 +49,10 @@ class Fade:
         object.__setattr__(self, "length", length)
 
 
+_CLIP_NUMBERS = ("start", "source_in", "source_out", "stretch", "loop_phase", "gain", "scale",
+                 "offset", "pivot")  # fmt: skip
+
+
 @dataclass(frozen=True)
 class Clip:
     """A tile placed on a track.
@@ -77,20 +81,10 @@ class Clip:
     fade_out: Fade = Fade()
 
     def __post_init__(self) -> None:
-        for name in (
-            "start",
-            "source_in",
-            "source_out",
-            "stretch",
-            "loop_phase",
-            "gain",
-            "scale",
-            "offset",
-            "pivot",
-        ):
-            object.__setattr__(
-                self, name, _finite(f"a clip's {name.replace('_', ' ')}", getattr(self, name))
-            )
+        for name in _CLIP_NUMBERS:
+            value = getattr(self, name)
+            if type(value) is not float or not math.isfinite(value):  # the message only if bad
+                object.__setattr__(self, name, _finite(f"a clip's {name.replace('_', ' ')}", value))
         if self.source_out <= self.source_in:
             raise EditError("a clip must play a source range of positive length")
         if self.stretch <= 0:
