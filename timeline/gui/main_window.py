@@ -21,7 +21,6 @@ from timeline import edits, importing, projectfile
 from timeline.errors import HapticTimelineError
 from timeline.formats import all_formats
 from timeline.model import Project
-from timeline.templates import template_tiles
 
 from . import variants
 from .autosave import Autosaver, Recoverable, recoverable
@@ -41,10 +40,8 @@ APP_NAME = "Haptic Timeline"
 
 
 def fresh_project(axis: str = "time") -> Project:
-    """A new project with the Templates tab filled and one track to start on."""
+    """A new project with the Templates tab filled (once) and one track to start on."""
     project = edits.new_project(axis)
-    for tile in template_tiles(axis):
-        project, _ = edits.add_tile(project, tile, "Templates")
     project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
     return project
 
@@ -89,6 +86,8 @@ class MainWindow(QMainWindow):
         self.view.context_requested.connect(self._fill_clip_menu)
         self.palette.range_dropped.connect(self._range_dropped)
         self.transport.play_button.clicked.connect(self.play_stop)
+        self.transport.hand_changed.connect(self._hand_changed)
+        self.ruler.clicked.connect(self._ruler_clicked)
         self.messages.cancel_requested.connect(self.cancel_jobs)
 
         lanes = QWidget()
@@ -334,6 +333,21 @@ class MainWindow(QMainWindow):
         self.transport.scope.clear()
         self.player.play(project, start, None, self.transport.loop.isChecked(), tracks)
         self.transport.show_playing(self.player.playing)
+
+    def _hand_changed(self, _hand) -> None:
+        """A new hand applies at once: playing restarts where the knob (or the stream) is."""
+        if not self.player.playing:
+            return
+        project = self.doc.project
+        if project.axis == "position":
+            self.player.play(project, origin=self.player.angle)
+        else:
+            self.player.stop()
+            self.play_stop()
+        self.transport.show_playing(self.player.playing)
+
+    def _ruler_clicked(self, u: float) -> None:
+        self.transport.show_position(u, self.doc.project.axis)
 
     def _follow_playhead(self, u: float) -> None:
         self.view.scene().set_playhead(u)

@@ -1,9 +1,11 @@
 """Play the project on a device in a worker thread, follow edits live, report telemetry.
 
 Time projects stream through LiveStream, so an edit is felt at the next block. Position projects
-play their tables (LiveTables) for a hand-turn sweep; an edit rebuilds the tables and the sim
-plays them from its next 50 ms chunk. The sim simulates a sweep faster than real time, so the
-player holds each chunk's telemetry until its time has come (and stops the sweep there).
+play their tables (LiveTables) with the chosen hand: a turning hand sweeps to the table's end,
+any other hand plays until Stop (HOLD_SECONDS at most). An edit rebuilds the tables and the sim
+plays them from its next 50 ms chunk; the playhead and the scope follow the knob's table angle.
+The sim simulates a sweep faster than real time, so the player holds each chunk's telemetry
+until its time has come (and stops the sweep there).
 """
 
 from __future__ import annotations
@@ -23,6 +25,8 @@ from timeline.model import Project
 
 from .live_stream import LiveStream, LiveTables
 
+HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
+
 
 class _Stopped(HapticTimelineError):
     """Stop was pressed during a position sweep."""
@@ -35,7 +39,7 @@ class Player(QObject):
     drains (the Friture pattern), and the signals below are emitted from that timer.
     """
 
-    telemetry = Signal(object, object)  # angle (rad), torque (N*m) arrays of the newest part
+    telemetry = Signal(object, object)  # angle (rad; table angle in position mode), torque (N*m)
     position = Signal(float)
     finished = Signal(str)  # "" or an error sentence
 
@@ -52,6 +56,8 @@ class Player(QObject):
         self._parts: deque[LiveTelemetry] = deque(maxlen=200)
         self._position: float | None = None
         self._outcome: str | None = None
+        self._origin = 0.0  # table angle where a position play started (telemetry is relative)
+        self._angle: float | None = None  # newest table angle of a position play
         self._poll = QTimer(self)
         self._poll.setInterval(33)
         self._poll.timeout.connect(self._drain)
@@ -85,16 +91,23 @@ class Player(QObject):
         stop: float | None = None,
         loop: bool = False,
         tracks: Iterable[str] | None = None,
+        origin: float | None = None,
     ) -> None:
-        """Start playing (stops a play already running); errors come back through `finished`."""
+        """Start playing (stops a play already running); errors come back through `finished`.
+
+        `origin` (rad) is where the knob starts in a position project (its first rest point
+        by default).
+        """
         self.stop()
         try:
             device = self._open()
             self.stream = self.tables = None
             if project.axis == "position":
-                sweep, _ = playback.position_program(project, hand=Hand("turn"))
+                hand = self.hand
+                duration = None if hand.turn_speed else HOLD_SECONDS
+                sweep, _ = playback.position_program(project, duration, hand, origin)
                 self.tables = LiveTables(sweep)
-                program, hand = self.tables.program, Hand("turn")
+                program, self._origin = self.tables.program, sweep.origin
             else:
                 stop = project.duration if stop is None else stop
                 if stop <= start:
@@ -126,6 +139,9 @@ class Player(QObject):
         self._position = state.position
 
     def _part(self, part: LiveTelemetry) -> None:
+        if len(part) and self.tables is not None:
+            part = LiveTelemetry(part.time, self._origin + part.angle, part.torque)
+            self._position = float(part.angle[-1])
         if len(part):
             self._parts.append(part)
         if self.tables is not None and len(part):
@@ -141,12 +157,19 @@ class Player(QObject):
             torque = np.concatenate([p.torque for p in parts])
             self.telemetry.emit(angle, torque)
         if self._position is not None:
+            if self.tables is not None:
+                self._angle = self._position
             self.position.emit(self._position)
             self._position = None
         if self._outcome is not None and not self.playing:
             outcome, self._outcome = self._outcome, None
             self._poll.stop()
             self.finished.emit(outcome)
+
+    @property
+    def angle(self) -> float | None:
+        """The knob's newest table angle (rad) while a position project plays."""
+        return self._angle if self.tables is not None else None
 
     def follow(self, project: Project) -> None:
         """Hand a new project state to the running stream (edit-to-feel starts here)."""

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from PySide6.QtCore import QPointF, Qt
+from PySide6.QtCore import QPointF, Qt, Signal
 from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPen
 from PySide6.QtWidgets import QWidget
 
@@ -16,6 +16,8 @@ HEIGHT = 26
 
 class Ruler(QWidget):
     """Tick marks and labels that follow the view's zoom and scroll."""
+
+    clicked = Signal(float)  # axis position the playhead and cursor moved to
 
     def __init__(self, view: TimelineView) -> None:
         super().__init__()
@@ -59,3 +61,4 @@ class Ruler(QWidget):
             self.view.scene().set_cursor(u)
             self.view.scene().set_playhead(u)
             self.update()
+            self.clicked.emit(u)

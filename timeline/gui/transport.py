@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+from PySide6.QtCore import Qt, Signal
 from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
+    QDoubleSpinBox,
     QHBoxLayout,
     QLabel,
     QPushButton,
@@ -13,14 +15,24 @@ from PySide6.QtWidgets import (
 )
 
 from timeline.devices import HAND_MODES, Hand
+from timeline.devices.hand import DEFAULT_PUSH_MNM, DEFAULT_TURN_DEG_PER_S
 
 from .geometry import axis_text
 from .player import Player
 from .scope import Scope
 
+HAND_TIPS = {
+    "hold": "The hand holds the knob still",
+    "free": "The hand lets go: the knob moves only by its own torque",
+    "turn": "The hand turns the knob at a speed (°/s; negative turns back)",
+    "push": "The hand pushes the knob with a torque (mNm; negative pushes back)",
+}
+
 
 class Transport(QWidget):
     """The play controls and the live scope; the window decides what to play."""
+
+    hand_changed = Signal(object)  # the new Hand
 
     def __init__(self, player: Player) -> None:
         super().__init__()
@@ -38,7 +50,14 @@ class Transport(QWidget):
         self.hand = QComboBox()
         self.hand.addItems(list(HAND_MODES))
         self.hand.setToolTip("What the simulated hand does while playing")
-        self.hand.currentTextChanged.connect(self._set_hand)
+        for i, mode in enumerate(HAND_MODES):
+            self.hand.setItemData(i, HAND_TIPS[mode], Qt.ItemDataRole.ToolTipRole)
+        self.hand_value = QDoubleSpinBox()
+        self.hand_value.setDecimals(1)
+        self.hand_value.setKeyboardTracking(False)
+        self.hand.currentTextChanged.connect(self._mode_chosen)
+        self.hand_value.valueChanged.connect(lambda _: self._set_hand())
+        self._mode_chosen(self.hand.currentText())
         self.where = QLabel()
         self.where.setMinimumWidth(70)
         self.where.setToolTip("Where the playhead is")
@@ -52,6 +71,7 @@ class Transport(QWidget):
         row.addWidget(self.device)
         row.addWidget(QLabel("hand"))
         row.addWidget(self.hand)
+        row.addWidget(self.hand_value)
         row.addWidget(QLabel("playhead"))
         row.addWidget(self.where)
         layout = QVBoxLayout(self)
@@ -61,8 +81,28 @@ class Transport(QWidget):
         player.telemetry.connect(self.scope.add)
         player.finished.connect(lambda _: self.show_playing(False))
 
-    def _set_hand(self, mode: str) -> None:
-        self.player.hand = Hand.parse(mode)
+    def _mode_chosen(self, mode: str) -> None:
+        """Show the speed (turn) or torque (push) box with its unit and a sensible default."""
+        box = self.hand_value
+        box.blockSignals(True)
+        if mode == "turn":
+            box.setRange(-3600.0, 3600.0)
+            box.setSuffix(" °/s")
+            box.setValue(DEFAULT_TURN_DEG_PER_S)
+        elif mode == "push":
+            box.setRange(-500.0, 500.0)
+            box.setSuffix(" mNm")
+            box.setValue(DEFAULT_PUSH_MNM)
+        box.blockSignals(False)
+        box.setVisible(mode in ("turn", "push"))
+        box.setToolTip(HAND_TIPS[mode])
+        self._set_hand()
+
+    def _set_hand(self) -> None:
+        mode = self.hand.currentText()
+        value = self.hand_value.value() if mode in ("turn", "push") else 0.0
+        self.player.hand = Hand(mode, value)
+        self.hand_changed.emit(self.player.hand)
 
     def show_playing(self, playing: bool) -> None:
         """Show the Play button's state."""

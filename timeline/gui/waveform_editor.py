@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
-from PySide6.QtCore import QMimeData, QPointF, QRectF, Qt
+from PySide6.QtCore import QEvent, QMimeData, QPointF, QRectF, Qt
 from PySide6.QtGui import QColor, QDrag, QFont, QMouseEvent, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import (
     QDoubleSpinBox,
@@ -27,6 +27,7 @@ from .palette import RANGE_MIME
 
 PICK_PX = 8.0
 MARGIN = 10.0
+DELETE_KEYS = (Qt.Key.Key_Delete, Qt.Key.Key_Backspace)
 
 
 def range_mime(tile_id: str, a: float, b: float) -> QMimeData:
@@ -184,8 +185,15 @@ class Canvas(QWidget):
         if index is not None:
             self.editor.select_point(index)
 
+    def event(self, event: QEvent) -> bool:
+        """Delete and Backspace belong to the focused curve, not to the window's clip Delete."""
+        if event.type() == QEvent.Type.ShortcutOverride and event.key() in DELETE_KEYS:
+            event.accept()
+            return True
+        return super().event(event)
+
     def keyPressEvent(self, event) -> None:
-        if event.key() in (Qt.Key.Key_Delete, Qt.Key.Key_Backspace):
+        if event.key() in DELETE_KEYS:
             self.editor.delete_point()
             event.accept()
             return

@@ -1,0 +1,104 @@
+"""The fan knob felt inside the editor: the hand box applies, the playhead follows the angle."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PySide6.QtCore import Qt
+from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QMessageBox
+
+from timeline import playback
+from timeline.devices import HAND_MODES
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture
+def fan_knob(qtbot):
+    """The editor with projects/fan_knob.htl opened the way a person opens it."""
+    from timeline.gui.main_window import MainWindow
+
+    win = MainWindow()
+    win.ask_unsaved = lambda: QMessageBox.StandardButton.Discard
+    qtbot.addWidget(win)
+    win.show()
+    qtbot.waitExposed(win)
+    assert win.open_path(ROOT / "projects" / "fan_knob.htl")
+    yield win
+    win.player.close()
+
+
+def choose_hand(win, mode: str, value: str | None = None) -> None:
+    """Pick the hand with the arrow keys in its box, then type its speed or torque."""
+    combo = win.transport.hand
+    QTest.mouseClick(combo, Qt.MouseButton.LeftButton)
+    combo.hidePopup()
+    QTest.keyClick(combo, Qt.Key.Key_Home)
+    for _ in range(HAND_MODES.index(mode)):
+        QTest.keyClick(combo, Qt.Key.Key_Down)
+    if value is not None:
+        box = win.transport.hand_value
+        QTest.keyClick(box, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
+        QTest.keyClicks(box, value)
+        QTest.keyClick(box, Qt.Key.Key_Return)
+
+
+def record(win) -> list[tuple[np.ndarray, np.ndarray]]:
+    parts: list[tuple[np.ndarray, np.ndarray]] = []
+    win.player.telemetry.connect(lambda a, t: parts.append((a.copy(), t.copy())))
+    return parts
+
+
+def test_fan_knob_turned_sweeps_the_table_and_each_detent_pushes_back(fan_knob, qtbot):
+    win = fan_knob
+    choose_hand(win, "turn", "180")
+    assert str(win.player.hand) == "turn:180"
+    parts = record(win)
+    with qtbot.waitSignal(win.player.finished, timeout=10_000) as done:
+        QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)
+        assert win.player.playing
+        assert win.transport.play_button.text() == "■ Stop"
+    assert done.args == [""]
+    angle = np.degrees(np.concatenate([a for a, _ in parts]))
+    torque = 1e3 * np.concatenate([t for _, t in parts])  # mNm
+    table, _ = playback.position_table(win.doc.project)
+    rests = np.degrees(playback.rest_angles(table))
+    assert rests == pytest.approx([50.0, 110.0, 170.0, 230.0], abs=0.1)
+    # the knob starts on the first detent (Off) and the hand turns it through Lo, Med, Hi
+    assert angle[0] == pytest.approx(50.0, abs=0.5)
+    assert angle.max() > 260.0  # into the wall beyond Hi
+    for rest in rests[1:]:
+        before = torque[(angle > rest - 20) & (angle < rest - 3)]
+        after = torque[(angle > rest + 3) & (angle < rest + 20)]
+        assert before.size > 50 and after.size > 50
+        assert np.all(before > 0) and np.all(after < 0)  # the detent pulls the knob into it
+        assert before.mean() > 20.0 and after.mean() < -20.0
+    # the playhead stopped where the knob did, on the degrees ruler and in the readout
+    end = math.degrees(win.view.scene().playhead_u)
+    assert end == pytest.approx(angle[-1], abs=0.01)
+    assert win.transport.where.text() == f"{end:.1f}°"
+    assert win.transport.scope.theta[-1] == pytest.approx(angle[-1], abs=2.0)
+    assert win.transport.play_button.text() == "▶ Play"
+
+
+def test_holding_hand_plays_until_stop_and_a_new_hand_applies_at_once(fan_knob, qtbot):
+    win = fan_knob
+    choose_hand(win, "hold")
+    assert win.player.hand.mode == "hold"
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert win.player.playing
+    qtbot.waitUntil(lambda: win.transport.scope.theta.size > 20, timeout=5000)
+    held = math.degrees(win.view.scene().playhead_u)
+    assert held == pytest.approx(50.0, abs=0.5)  # held still on Off
+    choose_hand(win, "push", "100")  # push harder than a detent (about 29 mNm) holds
+    assert str(win.player.hand) == "push:100"
+    assert win.player.playing
+    qtbot.waitUntil(lambda: math.degrees(win.view.scene().playhead_u) > 250.0, timeout=5000)
+    assert win.transport.scope.tau[-1] < 0  # the wall beyond Hi pushes back
+    QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)
+    assert not win.player.playing
+    assert win.transport.play_button.text() == "▶ Play"
