@@ -152,16 +152,16 @@ def _best_cpu(fn, repeat: int) -> float:
 
 def run(quick: bool, out: Path) -> list[Table]:
     repeat = 2 if quick else 3
-    render_sizes = ((500, 30.0), (2_000, 60.0)) if quick else ((1_000, 60.0), (4_000, 150.0),
+    render_sizes = ((250, 15.0), (1_000, 30.0)) if quick else ((1_000, 60.0), (4_000, 150.0),
                                                                 (16_000, 600.0))  # fmt: skip
     renders = [render_costs(n, s, 1 if n > 4_000 else repeat) for n, s in render_sizes]
     sizes = (500, 2_000) if quick else (1_000, 4_000, 16_000)
     builds = {n: edit_costs(n) for n in sizes}
-    file_sizes = (2_000, 10_000) if quick else (10_000, 30_000, 100_000)
+    file_sizes = (1_000, 5_000) if quick else (10_000, 30_000, 100_000)
     files = [file_costs(n, repeat) for n in file_sizes]
-    durations = (60.0, 300.0) if quick else (60.0, 600.0, 3600.0)
+    durations = (30.0, 120.0) if quick else (60.0, 600.0, 3600.0)
     recordings = [recording_costs(s, repeat) for s in durations]
-    start = startup_costs(repeat)
+    start = startup_costs(1 if quick else 3)
 
     edit_table = Table("Scale: building through edits (64 tracks, one tile per clip)",
                        ["clips", "ms per pair, first quarter", "ms per pair, last quarter",
@@ -211,7 +211,9 @@ def run(quick: bool, out: Path) -> list[Table]:
         ["haptic-timeline --help", start["help"], help_cpu, TARGET_STARTUP_S],
         ["render rising_resistance.htl", start["render"], render_cpu, TARGET_RENDER_CPU_S],
     ]
-    start_table.notes.append(f"least of {repeat} runs; user + system CPU of each child process")
+    start_table.notes.append(
+        f"least of {1 if quick else 3} run(s); user + system CPU of each child process"
+    )
     render_table = Table("Scale: full render, every clip its own shape, off-grid starts, 64 tracks",
                          ["clips", "memory pass CPU s", "full render CPU s",
                           "full / pass"])  # fmt: skip
