@@ -20,6 +20,7 @@ VERB_MODULES = [
     "timeline.cli.export_cmd",
     "timeline.cli.bench_cmd",
     "timeline.cli.check_cmd",
+    "timeline.cli.compare_cmd",
 ]
 
 
