@@ -83,3 +83,11 @@ def test_check_text_and_bad_actuator(tmp_path: Path, capsys) -> None:
     assert cli.main(["check", str(path), "--actuator", "piezo"]) == 1
     err = capsys.readouterr().err
     assert err.startswith("haptic-timeline: unknown actuator 'piezo'") and err.count("\n") == 1
+
+
+def test_check_plot_draws_rendered_against_designed(tmp_path: Path, capsys) -> None:
+    png = tmp_path / "rendered.png"
+    args = ["check", str(EXAMPLES / "fan_knob.htl"), "--hand", "turn:90", "--plot", str(png)]
+    assert cli.main(args) == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
+    assert "plot ->" in capsys.readouterr().err

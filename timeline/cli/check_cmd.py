@@ -12,7 +12,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from timeline.cli.play_cmd import parse_option
-from timeline.devices import DeviceInfo, open_device
+from timeline.devices import DeviceInfo, Hand, open_device
 from timeline.limits import servo
 from timeline.limits.actuators import PROFILES, actuator
 from timeline.limits.check import Report, check
@@ -31,6 +31,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--actuator", help=f"vibration actuator: {', '.join(PROFILES)}, lra:F0[:Q] "
                    "or voice-coil:LOW-HIGH (default: the device's own)")  # fmt: skip
     p.add_argument("--json", action="store_true", help="print the findings as JSON")
+    p.add_argument("--plot", help="write rendered against designed to this .png")
+    p.add_argument("--hand", default="hold", help="the hand for --plot on a knob (as in play)")
     p.add_argument("--quality", default=DEFAULT_QUALITY, choices=list(PRESETS))
     p.set_defaults(func=run)
 
@@ -75,9 +77,16 @@ def run(args: argparse.Namespace) -> int:
         print(as_json(args.project, info, report))
     else:
         name = Path(args.project).name
-        print(f"{name} on {info.name}: {len(report.findings) or 'no'} findings")
+        count = len(report.findings)
+        print(f"{name} on {info.name}: {count or 'no'} finding{'' if count == 1 else 's'}")
         for finding in report.findings:
             print(f"  {finding.describe()}")
         for note in report.notes:
             print(f"note: {note}", file=sys.stderr)
+    if args.plot:
+        from timeline.limits.plot import plot_rendered
+
+        hand = Hand.parse(args.hand)
+        plot_rendered(project, info, chosen or info.actuator, report, args.plot, hand, args.quality)
+        print(f"plot -> {args.plot}", file=sys.stderr)
     return FOUND if report.findings else 0
