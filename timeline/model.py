@@ -216,7 +216,7 @@ class Project:
     @cached_property
     def duration(self) -> float:
         """End of the last clip on any track (0 for an empty project)."""
-        return max((t.end for t in self.tracks), default=0.0)
+        return max((t.end for t in self.tracks if t.clips), default=0.0)
 
     def track(self, track_id: str) -> Track:
         for t in self.tracks:
