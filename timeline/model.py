@@ -39,6 +39,8 @@ class Fade:
     shape: str = "linear"
 
     def __post_init__(self) -> None:
+        if self.length == 0.0 and type(self.length) is float and self.shape == "linear":
+            return  # no fade: the common case, nothing to check
         length = _finite("a fade's length", self.length)
         if length < 0:
             raise EditError(f"a fade's length cannot be negative ({length})")
