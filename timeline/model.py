@@ -13,6 +13,7 @@ from types import MappingProxyType
 from typing import Any
 
 from timeline.errors import EditError
+from timeline.markers import LoopRegion, Marker
 from timeline.tiles import Tile
 
 AXES = ("time", "position")
@@ -158,7 +159,8 @@ def _frozen_map(mapping: Any) -> MappingProxyType:
 
 @dataclass(frozen=True)
 class Project:
-    """A whole design: axis, rate, tracks, tile library, palette, variants and metadata."""
+    """A whole design: axis, rate, tracks, tile library, palette, variants, markers, loop region
+    and metadata."""
 
     axis: str = "time"
     rate: float = DEFAULT_TIME_RATE
@@ -172,6 +174,8 @@ class Project:
     active_variant: str | None = None
     metadata: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
     next_id: int = 1
+    markers: tuple[Marker, ...] = ()  # sorted by position (timeline.markers edits them)
+    loop: LoopRegion | None = None
 
     def __post_init__(self) -> None:
         if self.axis not in AXES:

@@ -23,6 +23,7 @@ from timeline.formats import all_formats
 from timeline.model import Project
 
 from . import variants
+from .arrange import Arrange
 from .autosave import Autosaver, Recoverable, recoverable
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
@@ -78,6 +79,7 @@ class MainWindow(QMainWindow):
         self.palette = Palette(doc)
         self.editor = WaveformEditor(doc)
         self.transport = Transport(self.player)
+        self.arrange = Arrange(doc, self.view, self.ruler, lambda: self.player.playing)
         self.messages = MessageBar()
         self.view.verticalScrollBar().valueChanged.connect(
             self.headers.verticalScrollBar().setValue
@@ -88,6 +90,7 @@ class MainWindow(QMainWindow):
         self.transport.play_button.clicked.connect(self.play_stop)
         self.transport.hand_changed.connect(self._hand_changed)
         self.ruler.clicked.connect(self._ruler_clicked)
+        self.ruler.loop_dragged.connect(lambda: self.transport.loop.setChecked(True))
         self.messages.cancel_requested.connect(self.cancel_jobs)
 
         lanes = QWidget()
@@ -152,14 +155,21 @@ class MainWindow(QMainWindow):
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
         edit.addSeparator()
-        self.split_action = self._action(edit, "Spl&it at cursor", self.split, "Ctrl+I")
+        arrange = self.arrange
+        self.split_action = self._action(edit, "Spl&it at playhead", arrange.split_here, "S")
+        self.split_action.setShortcuts([QKeySequence("S"), QKeySequence("Ctrl+I")])
         self.clip_actions = [
             self.split_action,
-            self._action(edit, "&Duplicate", self.duplicate, "Ctrl+D"),
+            self._action(edit, "&Duplicate into free space", arrange.duplicate, "Ctrl+D"),
             self._action(edit, "De&lete", self.delete, QKeySequence.StandardKey.Delete),
+            self._action(edit, "Nudge &left one grid step", lambda: arrange.nudge(-1), "Alt+Left"),
+            self._action(edit, "Nudge &right one grid step", lambda: arrange.nudge(1), "Alt+Right"),
             self._action(edit, "In&vert about mirror line", self.invert, "Ctrl+Shift+M"),
             self._action(edit, "Re&verse", self.reverse, "Ctrl+R"),
-            self._action(edit, "&Merge into a palette tile", self.merge, "Ctrl+M"),
+            self._action(edit, "&Merge in place", lambda: self.merge(True), "Ctrl+M"),
+            self._action(
+                edit, "Merge into a &palette tile", lambda: self.merge(False), "Ctrl+Alt+M"
+            ),
         ]
         fades = edit.addMenu("Fade &shape")
         for shape in ("linear", "equal-power", "exponential", "s-curve"):
@@ -176,7 +186,11 @@ class MainWindow(QMainWindow):
 
         play = bar.addMenu("&Transport")
         self._action(play, "&Play / stop", self.play_stop, "Space")
-        self._action(play, "&Loop", self.transport.loop.toggle, "L")
+        self._action(play, "&Loop (the loop region if one is set)", self.transport.loop.toggle, "L")
+        play.addSeparator()
+        self._action(play, "Add &marker at playhead", arrange.add_marker, "M")
+        self._action(play, "&Next marker", lambda: arrange.jump(1), "]")
+        self._action(play, "P&revious marker", lambda: arrange.jump(-1), "[")
 
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
@@ -234,29 +248,6 @@ class MainWindow(QMainWindow):
 
         self.doc.apply(label, all_of)
 
-    def duplicate(self) -> None:
-        """Copy the selected clips, each right after itself."""
-        self._each("duplicate", lambda p, c: edits.duplicate_clip(p, c)[0])
-
-    def split(self) -> None:
-        """Split the selected clips (or the clips under the cursor) at the edit cursor."""
-        at = self.view.scene().cursor_u
-        project = self.doc.project
-        chosen = self.doc.selected_clips or [c.id for t in project.tracks for c in t.clips]
-        ids = [
-            i for i in chosen if project.find_clip(i)[1].start < at < project.find_clip(i)[1].end
-        ]
-        if not ids:
-            self.messages.show_message("place the cursor inside a clip to split it", "error")
-            return
-
-        def split_all(project: Project) -> Project:
-            for clip_id in ids:
-                project, _ = edits.split_clip(project, clip_id, at)
-            return project
-
-        self.doc.apply("split", split_all)
-
     def delete(self) -> None:
         """Remove the selected clips."""
         ids = list(self.doc.selected_clips)
@@ -281,13 +272,18 @@ class MainWindow(QMainWindow):
 
         self._each(f"{shape} fades", shaped)
 
-    def merge(self) -> None:
-        """Superimpose the selected clips into one new tile in the Scratch tab."""
+    def merge(self, in_place: bool = True) -> None:
+        """Superimpose the selected clips into one new tile in the Scratch tab; in place, one
+        clip of it replaces them (the design renders the same)."""
         ids = list(self.doc.selected_clips)
-        tile_id = self.doc.apply("merge to palette", edits.merge_clips, ids, replace_clips=False)
+        label = "merge in place" if in_place else "merge to palette"
+        tile_id = self.doc.apply(label, edits.merge_clips, ids, replace_clips=in_place)
         if tile_id:
             self.doc.select_tile(tile_id)
-            self.messages.show_message(f"merged {len(ids)} clips into a new tile in Scratch")
+            where = "; one clip of it replaces them" if in_place else ""
+            self.messages.show_message(
+                f"merged {len(ids)} clips into a new tile in Scratch{where} (Ctrl+Z undoes)"
+            )
 
     def select_all(self) -> None:
         self.doc.select_clips([c.id for t in self.doc.project.tracks for c in t.clips])
@@ -329,9 +325,13 @@ class MainWindow(QMainWindow):
             if not tracks:
                 self.messages.show_message("select clips on the tracks to play", "error")
                 return
+        loop = self.transport.loop.isChecked()
         start = self.view.scene().cursor_u if self.view.scene().cursor_u < project.duration else 0.0
+        stop = None
+        if loop and project.loop is not None:
+            start, stop = project.loop.start, project.loop.stop
         self.transport.scope.clear()
-        self.player.play(project, start, None, self.transport.loop.isChecked(), tracks)
+        self.player.play(project, start, stop, loop, tracks)
         self.transport.show_playing(self.player.playing)
 
     def _hand_changed(self, _hand) -> None:

@@ -10,6 +10,7 @@ from PySide6.QtWidgets import QGraphicsLineItem, QGraphicsScene
 
 from timeline.kinds import track_kind
 from timeline.model import Project
+from timeline.placement import overlaps
 
 from .clip_item import ClipItem
 from .geometry import Geometry, display_factor, nice_step
@@ -43,8 +44,12 @@ class TimelineScene(QGraphicsScene):
         """Show a project state."""
         self.project, self.selection = project, set(selection)
         seen = set()
+        audible = {t.id for t in project.tracks if not t.mute}
+        if any(t.solo for t in project.tracks):
+            audible = {t.id for t in project.tracks if t.solo}
         for lane, track in enumerate(project.tracks):
             colour = track_kind(track.kind).colour
+            covered = overlaps(project, track.id)
             for clip in track.clips:
                 item = self.items_by_clip.get(clip.id)
                 if item is None:
@@ -58,6 +63,9 @@ class TimelineScene(QGraphicsScene):
                     colour,
                     project.rate,
                     clip.id in self.selection,
+                    track.id not in audible,
+                    covered.get(clip.id, ()),
+                    project.axis,
                 )
                 seen.add(clip.id)
         for clip_id in list(self.items_by_clip):
@@ -107,6 +115,10 @@ class TimelineScene(QGraphicsScene):
         last = math.ceil(g.u(rect.right()) / step)
         painter.setPen(QPen(QColor(0, 0, 0, 25), 1))
         bottom = g.lane_top(lanes)
+        loop = self.project.loop
+        if loop is not None:
+            band = QRectF(g.x(loop.start), 0, g.x(loop.stop) - g.x(loop.start), bottom)
+            painter.fillRect(band.intersected(rect), QColor(56, 160, 90, 30))
         for i in range(first, last + 1):
             x = g.x(i * step)
             painter.drawLine(QLineF(x, 0, x, bottom))
