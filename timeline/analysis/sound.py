@@ -1,0 +1,190 @@
+"""A sound in, envelopes out: the analysis pipeline, run block by block in bounded memory.
+
+The sound (mixed to mono) has its DC offset removed and is normalised (or given a gain); the
+amplitude envelope is sampled every `update` seconds from the follower (envelope.py) and reduced
+(reduce.py); the frequency envelope is the mapped spectral centroid of each frame (spectrum.py),
+reduced the same way; emphasis is picked from the reduced amplitude envelope (onsets.py). Both
+envelopes start at 0 s and end together at the end of the sound.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+
+from timeline.analysis.envelope import EnvelopeFollower
+from timeline.analysis.onsets import emphasis
+from timeline.analysis.reduce import RegionReducer
+from timeline.analysis.settings import DEFAULTS, AnalysisSettings
+from timeline.analysis.spectrum import SpectrumFrames, frequency_values
+
+
+class AnalysisError(ValueError):
+    """A sound the analysis cannot use (no samples, no rate, non-finite samples)."""
+
+
+@dataclass(frozen=True)
+class SoundAnalysis:
+    """The analysed design: breakpoints as (n, 2) arrays of (seconds, 0..1) and emphasis."""
+
+    amplitude: np.ndarray  # (n, 2): time, amplitude
+    frequency: np.ndarray  # (m, 2): time, normalised frequency
+    emphasis: np.ndarray  # (k, 3): time, amplitude, frequency
+    duration: float  # s: length of the sound
+    rate: float  # Hz: the sound's sample rate
+    peak: float  # the sound's peak level (less DC) before normalisation
+
+
+@dataclass(frozen=True)
+class Level:
+    """What preprocessing does to every sample: subtract `offset`, then multiply by `gain`."""
+
+    offset: float
+    gain: float
+    peak: float
+
+    @classmethod
+    def of(cls, mean: float, peak: float, settings: AnalysisSettings) -> Level:
+        """DC removal and normalisation (or fixed gain) for a sound of this mean and peak."""
+        headroom = peak - abs(mean)
+        if settings.normalize:
+            target = 10.0 ** (settings.level_db / 20.0)
+            gain = target / headroom if headroom > 1e-9 else 0.0
+        else:
+            gain = 10.0 ** (settings.gain_db / 20.0)
+        return cls(mean, gain, headroom)
+
+
+def level_of(samples: np.ndarray, settings: AnalysisSettings) -> Level:
+    """The preprocessing level of a whole mono sound held in memory."""
+    if len(samples) == 0:
+        return Level(0.0, 0.0, 0.0)
+    return Level.of(float(np.mean(samples)), float(np.max(np.abs(samples))), settings)
+
+
+def _check_rate(rate: float) -> float:
+    if not (math.isfinite(rate) and rate > 0):
+        raise AnalysisError(f"the sound's sample rate must be above zero, not {rate!r}")
+    return float(rate)
+
+
+class _AmplitudeEvents:
+    """Samples the follower every `update` seconds (the output after the sample before)."""
+
+    def __init__(self, rate: float, update: float, length: int) -> None:
+        k = np.arange(1, int(length / (update * rate)) + 3)
+        index = np.ceil(k * update * rate - 1e-9).astype(np.int64)  # samples processed
+        last = int(np.searchsorted(index, length, side="left"))  # the first to reach the end
+        self.index = index[: last + 1]
+        self.rate = rate
+        self.seen = 0
+
+    @property
+    def needed(self) -> int:
+        """Samples that must be processed to reach the last event."""
+        return int(self.index[-1])
+
+    def take(self, envelope: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.seen, self.seen + len(envelope)
+        a, b = np.searchsorted(self.index, [lo + 1, hi + 1], side="left")
+        picked = self.index[a:b]
+        self.seen = hi
+        return picked / self.rate, np.minimum(envelope[picked - 1 - lo], 1.0)
+
+
+def analyse_blocks(
+    blocks: Iterable[np.ndarray],
+    rate: float,
+    length: int,
+    level: Level,
+    settings: AnalysisSettings = DEFAULTS,
+) -> SoundAnalysis:
+    """Analyse a mono sound of `length` samples arriving as blocks, preprocessed by `level`."""
+    rate = _check_rate(rate)
+    if length <= 0:
+        raise AnalysisError("the sound has no samples")
+    follower = EnvelopeFollower.create(
+        rate, settings.rms_window, settings.attack, settings.hold, settings.release
+    )
+    spectrum = SpectrumFrames.create(rate, settings)
+    events = _AmplitudeEvents(rate, settings.update, length)
+    amp = RegionReducer(settings.amplitude_points_per_second, settings.minimum_score, None)
+    freq = RegionReducer(settings.frequency_points_per_second, settings.minimum_score, None)
+    flux_t: list[np.ndarray] = []
+    flux_v: list[np.ndarray] = []
+
+    def spectral(times: np.ndarray, centroid: np.ndarray, flux: np.ndarray) -> None:
+        flux_t.append(times.astype(np.float32))
+        flux_v.append(flux.astype(np.float32))
+        ahead = times >= 0.0
+        freq.add(times[ahead], frequency_values(centroid[ahead], rate, settings))
+
+    fed = 0
+    for block in blocks:
+        x = (np.asarray(block, dtype=np.float64) - level.offset) * level.gain
+        if not np.all(np.isfinite(x)):
+            raise AnalysisError("the sound holds samples that are not finite numbers")
+        fed += len(x)
+        amp.add(*events.take(follower.process(x)))
+        spectral(*spectrum.process(x))
+    if fed != length:
+        raise AnalysisError(f"the sound ended after {fed} of its {length} samples")
+    tail = np.zeros(max(0, events.needed - length))
+    if len(tail):
+        amp.add(*events.take(follower.process(tail)))
+    spectral(*spectrum.finish())
+    return _assemble(
+        amp.finish(), freq.finish(), flux_t, flux_v, length / rate, rate, level, settings
+    )
+
+
+def _assemble(
+    amp: tuple[np.ndarray, np.ndarray],
+    freq: tuple[np.ndarray, np.ndarray],
+    flux_t: list[np.ndarray],
+    flux_v: list[np.ndarray],
+    duration: float,
+    rate: float,
+    level: Level,
+    settings: AnalysisSettings,
+) -> SoundAnalysis:
+    at, av = amp
+    if len(at) == 0 or at[0] != 0.0:
+        at = np.concatenate([[0.0], at])
+        av = np.concatenate([[av[0] if len(av) else 0.0], av])
+    ft, fv = freq
+    flux_times = np.concatenate(flux_t).astype(np.float64)
+    flux = np.concatenate(flux_v).astype(np.float64)
+    peaks, e_amp, e_freq = emphasis(at, av, flux_times, flux, settings)
+    end = max(duration, float(at[-1]), float(ft[-1]) if len(ft) else 0.0)
+    if at[-1] < end:
+        at, av = np.append(at, end), np.append(av, av[-1])
+    if len(ft) and ft[-1] < end:
+        ft, fv = np.append(ft, end), np.append(fv, fv[-1])
+    if len(ft) == 0:
+        ft, fv = np.array([0.0, end]), np.zeros(2)
+    return SoundAnalysis(
+        amplitude=np.column_stack([at, av]),
+        frequency=np.column_stack([ft, fv]),
+        emphasis=np.column_stack([at[peaks], e_amp, e_freq]),
+        duration=end,
+        rate=rate,
+        peak=level.peak,
+    )
+
+
+def analyse(
+    samples: np.ndarray, rate: float, settings: AnalysisSettings = DEFAULTS
+) -> SoundAnalysis:
+    """Analyse a sound held in memory: mono (n,) or (n, channels), mixed down by the mean."""
+    x = np.asarray(samples, dtype=np.float64)
+    if x.ndim == 2:
+        x = x.mean(axis=1)
+    if x.ndim != 1:
+        raise AnalysisError("a sound is a 1-D array of samples or a 2-D array (samples, channels)")
+    if not np.all(np.isfinite(x)):
+        raise AnalysisError("the sound holds samples that are not finite numbers")
+    return analyse_blocks([x], rate, len(x), level_of(x, settings), settings)
