@@ -25,8 +25,10 @@ from timeline.model import Project
 from . import variants
 from .arrange import Arrange
 from .autosave import Autosaver, Recoverable, recoverable
+from .clipboard import ClipClipboard
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
+from .inspector import Inspector
 from .message_bar import MessageBar
 from .palette import Palette
 from .player import Player
@@ -78,8 +80,10 @@ class MainWindow(QMainWindow):
         self.ruler = Ruler(self.view)
         self.palette = Palette(doc)
         self.editor = WaveformEditor(doc)
+        self.inspector = Inspector(doc)
         self.transport = Transport(self.player)
         self.arrange = Arrange(doc, self.view, self.ruler, lambda: self.player.playing)
+        self.clipboard = ClipClipboard(doc, self.arrange.here)
         self.messages = MessageBar()
         self.view.verticalScrollBar().valueChanged.connect(
             self.headers.verticalScrollBar().setValue
@@ -111,8 +115,9 @@ class MainWindow(QMainWindow):
         top.setSizes([320, 1080])
         bottom = QSplitter(Qt.Orientation.Horizontal)
         bottom.addWidget(self.editor)
+        bottom.addWidget(self.inspector)
         bottom.addWidget(self.transport)
-        bottom.setSizes([700, 700])
+        bottom.setSizes([560, 220, 620])
         main = QSplitter(Qt.Orientation.Vertical)
         main.addWidget(top)
         main.addWidget(bottom)
@@ -155,10 +160,18 @@ class MainWindow(QMainWindow):
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
         edit.addSeparator()
+        cut = self._action(edit, "Cu&t", self.clipboard.cut, QKeySequence.StandardKey.Cut)
+        copy = self._action(edit, "&Copy", self.clipboard.copy, QKeySequence.StandardKey.Copy)
+        self._action(
+            edit, "&Paste at playhead", self.clipboard.paste, QKeySequence.StandardKey.Paste
+        )
+        edit.addSeparator()
         arrange = self.arrange
         self.split_action = self._action(edit, "Spl&it at playhead", arrange.split_here, "S")
         self.split_action.setShortcuts([QKeySequence("S"), QKeySequence("Ctrl+I")])
         self.clip_actions = [
+            cut,
+            copy,
             self.split_action,
             self._action(edit, "&Duplicate into free space", arrange.duplicate, "Ctrl+D"),
             self._action(edit, "De&lete", self.delete, QKeySequence.StandardKey.Delete),
