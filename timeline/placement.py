@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from timeline import edits
 from timeline.model import Project
 
 EPS = 1e-9
@@ -48,3 +49,28 @@ def overlaps(project: Project, track_id: str) -> dict[str, tuple[tuple[float, fl
                 found.setdefault(a.id, []).append((lo, hi))
                 found.setdefault(b.id, []).append((lo, hi))
     return {k: tuple(sorted(v)) for k, v in found.items()}
+
+
+def into_gap(project: Project, clip_ids: list[str], at: float) -> Project:
+    """Move new clips (placed from `at` on) later together, to where none covers an older clip.
+
+    Used after an import: the new material keeps its own layout and lands in the first gap on
+    each of its tracks that holds all of it.
+    """
+    new = set(clip_ids)
+    if not new:
+        return project
+    placed = [project.find_clip(i) for i in clip_ids]
+    first = min(c.start for _, c in placed)
+    shift = 0.0
+    for track in {t.id for t, _ in placed}:
+        mine = [c for t, c in placed if t.id == track]
+        span = max(c.end for c in mine) - first
+        start = free_start(project, track, span, first + shift, ignore=new)
+        shift = max(shift, (start if start is not None else first) - first)
+    if shift <= EPS:
+        return project
+    for clip_id in clip_ids:
+        _, clip = project.find_clip(clip_id)
+        project = edits.move_clip(project, clip_id, clip.start + shift)
+    return project

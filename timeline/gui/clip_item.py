@@ -18,7 +18,14 @@ from .geometry import CLIP_MARGIN, Geometry, axis_text, gain_text
 
 EDGE_PX = 6.0
 HANDLE_PX = 9.0
+SHAPE_LABEL_PX = 60.0  # fades this long show their shape's name
 VALUE_RANGE = 1.0  # the lane shows -1 .. 1 of the tile's full scale
+
+
+def value_offset(value: float, height: float) -> float:
+    """Distance from a clip's top to where a value (tile units) is drawn, in a clip this high."""
+    half = height / 2 - 3
+    return height / 2 - max(-1.2, min(1.2, value / VALUE_RANGE)) * half
 
 
 class ClipItem(QGraphicsItem):
@@ -97,8 +104,7 @@ class ClipItem(QGraphicsItem):
 
     def value_y(self, value: float) -> float:
         """Item y of a clip value (tile units)."""
-        half = self._h / 2 - 3
-        return self._h / 2 - max(-1.2, min(1.2, value / VALUE_RANGE)) * half
+        return value_offset(value, self._h)
 
     def y_value(self, y: float) -> float:
         """Clip value (tile units) at an item y."""
@@ -195,6 +201,14 @@ class ClipItem(QGraphicsItem):
             handle = self.fade_handle(which)
             painter.setBrush(QBrush(QColor("#ffffff")))
             painter.drawRect(QRectF(handle.x() - 4, 0, 8, 8))
+            if length >= SHAPE_LABEL_PX:
+                font = QFont()
+                font.setPointSizeF(7.0)
+                painter.setFont(font)
+                x = handle.x() - length if which == "in" else handle.x()
+                painter.drawText(
+                    QRectF(x, self._h - 14, length, 12), Qt.AlignmentFlag.AlignCenter, fade.shape
+                )
 
     def _paint_label(self, painter: QPainter) -> None:
         clip, tile = self.clip, self.tile

@@ -6,7 +6,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from PySide6.QtCore import Qt
-from PySide6.QtGui import QAction, QCloseEvent, QKeySequence
+from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
 from PySide6.QtWidgets import (
     QFileDialog,
     QGridLayout,
@@ -21,6 +21,7 @@ from timeline import edits, importing, projectfile
 from timeline.errors import HapticTimelineError
 from timeline.formats import all_formats
 from timeline.model import Project
+from timeline.placement import into_gap
 
 from . import variants
 from .arrange import Arrange
@@ -34,6 +35,7 @@ from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
 from .ruler import Ruler
+from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
 from .transport import Transport
@@ -159,6 +161,8 @@ class MainWindow(QMainWindow):
         edit = bar.addMenu("&Edit")
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
+        self.history_menu = edit.addMenu("&History")
+        self.history_menu.aboutToShow.connect(lambda: fill_history(self.history_menu, self.doc))
         edit.addSeparator()
         cut = self._action(edit, "Cu&t", self.clipboard.cut, QKeySequence.StandardKey.Cut)
         copy = self._action(edit, "&Copy", self.clipboard.copy, QKeySequence.StandardKey.Copy)
@@ -208,6 +212,9 @@ class MainWindow(QMainWindow):
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
+        var.addSeparator()
+        self.variants_menu = var
+        var.aboutToShow.connect(lambda: fill_variants(var, self.doc, self.switch_variant))
 
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
@@ -316,6 +323,11 @@ class MainWindow(QMainWindow):
         """Switch to the next variant, to compare by feel."""
         if self.doc.apply("switch variant", variants.switch_next):
             self.messages.show_message(f"now playing variant {self.doc.project.active_variant}")
+
+    def switch_variant(self, name: str) -> None:
+        """Switch to a named variant (from the Variants menu)."""
+        if self.doc.apply("switch variant", edits.switch_variant, name):
+            self.messages.show_message(f"now playing variant {name}")
 
     def _range_dropped(self, tab: str, mime) -> None:
         tile_id, a, b = read_range(mime)
@@ -438,10 +450,20 @@ class MainWindow(QMainWindow):
             self, "Import", "", f"Importable ({self._extensions('reads')})"
         )
         if paths:
-            track = next((t for t in self.doc.project.tracks), None)
-            self.import_files(
-                [Path(p) for p in paths], track.id if track else "", self.view.scene().cursor_u
-            )
+            self.import_files([Path(p) for p in paths], self._import_track(), self.arrange.here())
+
+    def _import_track(self) -> str:
+        """Where an import goes: the selected clip's track, else the lane under the pointer,
+        else the first track."""
+        project = self.doc.project
+        if self.doc.selected_clips:
+            return project.find_clip(self.doc.selected_clips[0])[0].id
+        pointer = self.view.viewport().mapFromGlobal(QCursor.pos())
+        if self.view.viewport().rect().contains(pointer):
+            track = self.view.track_at(self.view.mapToScene(pointer).y())
+            if track is not None:
+                return track.id
+        return project.tracks[0].id if project.tracks else ""
 
     def import_files(self, paths: list[Path], track_id: str, at: float) -> None:
         """Import files in the background onto a track (its kind gives them meaning)."""
@@ -461,6 +483,7 @@ class MainWindow(QMainWindow):
         chosen = track_id if any(t.id == track_id for t in project.tracks) else None
         try:
             project, clip_ids = importing.place(project, imported, at=at, track_id=chosen)
+            project = into_gap(project, clip_ids, at)
         except HapticTimelineError as exc:
             self.messages.show_message(str(exc), "error")
             return

@@ -4,6 +4,7 @@ values in numeric boxes, and a range that can be dragged (or sent) to the palett
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 from PySide6.QtCore import QEvent, QMimeData, QPointF, QRectF, Qt
@@ -18,11 +19,13 @@ from PySide6.QtWidgets import (
 )
 
 from timeline import tile_edits
+from timeline.model import Track
 from timeline.tiles import SplineTile, Tile
 
 from .clip_shape import tile_samples
 from .document import Document
 from .geometry import axis_text, display_factor
+from .lane_scale import full_scale_text
 from .palette import RANGE_MIME
 
 PICK_PX = 8.0
@@ -101,8 +104,7 @@ class Canvas(QWidget):
         data, rate = tile_samples(tile, self.editor.doc.project.rate)
         peak = max(1.0, float(np.abs(data).max()))
         self.span = (-peak * 1.1, peak * 1.1)
-        painter.setPen(QPen(QColor("#dddddd"), 1))
-        painter.drawLine(QPointF(0, self.y_of(0)), QPointF(self.width(), self.y_of(0)))
+        self._paint_scale(painter, peak)
         count = max(2, self.width() - int(2 * MARGIN))
         idx = np.linspace(0, len(data) - 1, count)
         values = np.interp(idx, np.arange(len(data)), data)
@@ -125,6 +127,31 @@ class Canvas(QWidget):
             QPointF(MARGIN + 2, 12),
             f"{tile.name} · {axis_text(tile.duration, self.editor.doc.project.axis)}",
         )
+
+    def _paint_scale(self, painter: QPainter, peak: float) -> None:
+        """Grid lines at 0, ±½ and ±1 of the peak, labelled in tile units and, for the selected
+        clip's track, in its display unit (what 1.0 means there)."""
+        track = self.editor.track()
+        font = QFont()
+        font.setPointSizeF(7.0)
+        painter.setFont(font)
+        top = nice_level(peak)
+        for value in (top, top / 2, 0.0, -top / 2, -top):
+            y = self.y_of(value)
+            painter.setPen(QPen(QColor("#c8c8c8" if value == 0 else "#ececec"), 1))
+            painter.drawLine(QPointF(0, y), QPointF(self.width(), y))
+            if value in (top, 0.0, -top):
+                text = f"{value:+.3g}" if value else "0"
+                if track is not None and value:
+                    text += f" = {full_scale_text(track, value)} on {track.name}"
+                painter.setPen(QColor("#777777"))
+                painter.drawText(
+                    QPointF(
+                        self.width() - MARGIN - 4 - painter.fontMetrics().horizontalAdvance(text),
+                        y - 2,
+                    ),
+                    text,
+                )
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         if self.editor.tile is None or event.button() != Qt.MouseButton.LeftButton:
@@ -200,6 +227,12 @@ class Canvas(QWidget):
         super().keyPressEvent(event)
 
 
+def nice_level(peak: float) -> float:
+    """The largest 1-2-5 number not above the peak (the scale's top line)."""
+    power = 10.0 ** math.floor(math.log10(max(peak, 1e-12)))
+    return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= peak * (1 + 1e-12))
+
+
 def _move_keep_index(project, tile_id: str, index: int, t: float, v: float):
     return tile_edits.move_point(project, tile_id, index, t, v), index
 
@@ -245,6 +278,15 @@ class WaveformEditor(QWidget):
     @property
     def tile(self) -> Tile | None:
         return self.doc.project.tiles.get(self.tile_id) if self.tile_id else None
+
+    def track(self) -> Track | None:
+        """The track of the first selected clip that plays this tile (it gives values a unit)."""
+        project = self.doc.project
+        for clip_id in self.doc.selected_clips:
+            track, clip = project.find_clip(clip_id)
+            if clip.tile_id == self.tile_id:
+                return track
+        return None
 
     def _box(self, prefix: str) -> QDoubleSpinBox:
         box = QDoubleSpinBox()
