@@ -101,3 +101,38 @@ def test_a_parameter_edit_is_felt_while_playing(window, qtbot):
     assert quiet == pytest.approx(0.25 * loud, rel=1e-9)
     QTest.keyClick(win, Qt.Key.Key_Space)
     assert not win.player.playing
+
+
+def test_dragging_a_point_of_the_bump_template_edits_a_copy(window):
+    from PySide6.QtCore import QPointF
+
+    from timeline.gui.gestures.palette_drop import tile_mime
+    from timeline.tiles import SplineTile
+
+    from .helpers import send_drop, view_point
+
+    win = window
+    win.new_project("time")
+    project = win.doc.project
+    bump = next(k for k, t in project.tiles.items() if t.name == "bump")
+    send_drop(win, tile_mime(bump), view_point(win, QPointF(100, 30)))
+    [clip_id] = win.doc.selected_clips
+    before = win.doc.project
+    canvas = win.editor.canvas
+    canvas.repaint()
+    t, v = project.tile(bump).points[1]
+    start = QPoint(round(canvas.x_of(t)), round(canvas.y_of(v)))
+    QTest.mousePress(canvas, LEFT, pos=start)
+    for dy in (5, 10, 20):
+        QTest.mouseMove(canvas, start + QPoint(0, dy))
+    QTest.mouseRelease(canvas, LEFT, pos=start + QPoint(0, 20))
+    project = win.doc.project
+    assert project.tile(bump) == before.tile(bump)  # the template is as it was
+    copy = project.find_clip(clip_id)[1].tile_id
+    assert copy != bump and copy in project.tab("Scratch").tile_ids
+    tile = project.tile(copy)
+    assert isinstance(tile, SplineTile) and tile.name == "bump copy"
+    assert tile.points[1][1] < v  # dragged down
+    assert win.messages.text.startswith("a template is never changed")
+    QTest.keyClick(win, Qt.Key.Key_Z, CTRL)
+    assert win.doc.project == before

@@ -16,6 +16,7 @@ from timeline.tiles import GeneratorTile, SampledTile
 
 from .document import Document
 from .geometry import display_factor
+from .tile_editing import edit_tile
 
 FREQUENCIES = {"frequency", "f0", "f1", "carrier", "modulation", "bandwidth"}
 TIMES = {"attack", "decay", "release"}
@@ -152,17 +153,6 @@ class Inspector(QWidget):
         current = tile.duration if name == "length" else dict(getattr(tile, "params", ())).get(name)
         if current is not None and math.isclose(current, value, rel_tol=1e-12, abs_tol=1e-15):
             return
-        clips = list(self.doc.selected_clips)
-
-        def edit(project):
-            project, target = tile_params.editable(project, tile_id, clips)
-            if name == "length":
-                return tile_params.set_length(project, target, value), target
-            return tile_params.set_param(project, target, name, value), target
-
-        target = self.doc.apply(f"set {name}", edit, merge_key=merge_key)
-        if target and target != tile_id:
-            self.doc.select_tile(target)
-            self.doc.message.emit(
-                "a template is never changed: you are editing a copy in Scratch", "info"
-            )
+        edit = tile_params.set_length if name == "length" else tile_params.set_param
+        args = (value,) if name == "length" else (name, value)
+        edit_tile(self.doc, f"set {name}", tile_id, edit, *args, merge_key=merge_key)

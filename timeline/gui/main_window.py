@@ -376,6 +376,7 @@ class MainWindow(QMainWindow):
 
     def _follow_playhead(self, u: float) -> None:
         self.view.scene().set_playhead(u)
+        self.view.keep_visible(u)
         self.ruler.update()
         self.transport.show_position(u, self.doc.project.axis)
 
@@ -394,8 +395,11 @@ class MainWindow(QMainWindow):
         self.player.stop()
         self.autosaver.discard()
         self.doc.reset(project, path)
+        self.view.scene().set_playhead(0.0)  # the old playhead means nothing in another project
+        self.view.scene().set_cursor(0.0)
+        self.transport.scope.clear()
         self.view.fit()
-        self.transport.show_position(self.view.scene().playhead_u, project.axis)
+        self.transport.show_position(0.0, project.axis)
 
     def open_path(self, path: Path) -> bool:
         """Open a project file (after asking about unsaved changes)."""
@@ -435,7 +439,10 @@ class MainWindow(QMainWindow):
         return self.save_to(self.doc.path)
 
     def save_as_dialog(self) -> bool:
-        path, _ = QFileDialog.getSaveFileName(self, "Save project", "", "Haptic timeline (*.htl)")
+        start = str(self.doc.path) if self.doc.path else ""
+        path, _ = QFileDialog.getSaveFileName(
+            self, "Save project", start, "Haptic timeline (*.htl)"
+        )
         if not path:
             return False
         path = Path(path if path.endswith(".htl") else path + ".htl")

@@ -129,6 +129,13 @@ class TimelineView(QGraphicsView):
         self.horizontalScrollBar().setValue(0)
         self.zoomed.emit()
 
+    def keep_visible(self, u: float) -> None:
+        """Page the view so an axis position (the playing playhead) stays on screen."""
+        bar = self.horizontalScrollBar()
+        x, width = self.geometry.x(u), self.viewport().width()
+        if not bar.value() <= x <= bar.value() + width:
+            bar.setValue(int(x - 0.1 * width))
+
     def drawBackground(self, painter: QPainter, rect) -> None:
         super().drawBackground(painter, rect)
         lane_scale.draw_grid(painter, self.geometry, self.doc.project, rect)

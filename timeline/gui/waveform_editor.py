@@ -27,6 +27,7 @@ from .document import Document
 from .geometry import axis_text, display_factor
 from .lane_scale import full_scale_text
 from .palette import RANGE_MIME
+from .tile_editing import edit_tile
 
 PICK_PX = 8.0
 MARGIN = 10.0
@@ -179,10 +180,9 @@ class Canvas(QWidget):
         if self.selecting:
             self.editor.set_range(self.editor.range[0], self.t_of(pos.x()))
         elif self.dragging is not None:
-            index = self.editor.doc.apply(
+            index = self.editor.apply(
                 "move spline point",
                 _move_keep_index,
-                self.editor.tile_id,
                 self.dragging,
                 self.t_of(pos.x()),
                 self.v_of(pos.y()),
@@ -202,10 +202,9 @@ class Canvas(QWidget):
         if self.editor.tile is None:
             return
         pos = event.position()
-        index = self.editor.doc.apply(
+        index = self.editor.apply(
             "add spline point",
             tile_edits.add_point,
-            self.editor.tile_id,
             self.t_of(pos.x()),
             self.v_of(pos.y()),
         )
@@ -336,23 +335,24 @@ class WaveformEditor(QWidget):
     def _typed(self) -> None:
         if self.point is None or self.tile_id is None:
             return
-        self.doc.apply(
+        self.apply(
             "set spline point",
             tile_edits.move_point,
-            self.tile_id,
             self.point,
             self.t_box.value() / display_factor(self.doc.project.axis),
             self.v_box.value(),
         )
+
+    def apply(self, label: str, edit, *args, merge_key: object = None):
+        """Edit the shown tile: edit(project, tile_id, *args), one undo step (see edit_tile)."""
+        return edit_tile(self.doc, label, self.tile_id, edit, *args, merge_key=merge_key)
 
     def delete_point(self) -> None:
         """Delete the selected control point."""
         if (
             self.point is not None
             and self.tile_id is not None
-            and self.doc.apply(
-                "delete spline point", tile_edits.remove_point, self.tile_id, self.point
-            )
+            and self.apply("delete spline point", tile_edits.remove_point, self.point)
         ):
             self.select_point(None)
 
