@@ -58,11 +58,12 @@ def test_markers_and_loop_survive_a_save(tmp_path):
     assert body["loop"] == [0.1, 0.7]
 
 
-def test_a_schema_1_file_opens_without_markers(tmp_path):
+@pytest.mark.parametrize("schema", [1, 2])
+def test_an_older_file_opens_without_markers(tmp_path, schema):
     p = edits.new_project(templates=False)
     doc = projectfile.to_json(p)
     del doc["project"]["markers"], doc["project"]["loop"]
-    doc["schema"] = 1
+    doc["schema"] = schema
     (tmp_path / "old.htl").write_text(json.dumps(doc))
     again = projectfile.load(tmp_path / "old.htl")
     assert again.markers == () and again.loop is None
