@@ -36,6 +36,7 @@ from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
 from .ruler import Ruler
+from .similarity_map import similarity_window
 from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
@@ -214,6 +215,8 @@ class MainWindow(QMainWindow):
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
+        self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
+        self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
         var.addSeparator()
         self.variants_menu = var
         var.aboutToShow.connect(lambda: fill_variants(var, self.doc, self.switch_variant))
