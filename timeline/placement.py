@@ -39,16 +39,29 @@ def free_start(
 
 
 def overlaps(project: Project, track_id: str) -> dict[str, tuple[tuple[float, float], ...]]:
-    """Per clip of a track, the axis spans where another clip of the same track covers it."""
-    clips = project.track(track_id).clips
-    found: dict[str, list[tuple[float, float]]] = {}
-    for i, a in enumerate(clips):
-        for b in clips[i + 1 :]:
-            lo, hi = max(a.start, b.start), min(a.end, b.end)
-            if hi - lo > EPS:
-                found.setdefault(a.id, []).append((lo, hi))
-                found.setdefault(b.id, []).append((lo, hi))
-    return {k: tuple(sorted(v)) for k, v in found.items()}
+    """Per clip of a track, the axis span where other clips of the track cover it (O(n log n)).
+
+    The span runs from where the first other clip reaches into it to where the last one leaves
+    it (gaps between several covering clips are not split out: it is what the lane hatches).
+    """
+    clips = sorted(project.track(track_id).clips, key=lambda c: (c.start, c.end))
+    n = len(clips)
+    later_reach = [float("-inf")] * (n + 1)  # max end of the clips after each one
+    for i in range(n - 1, -1, -1):
+        later_reach[i] = max(later_reach[i + 1], clips[i].end)
+    found: dict[str, tuple[tuple[float, float], ...]] = {}
+    reach = float("-inf")  # max end of the clips before
+    for i, c in enumerate(clips):
+        lo, hi = float("inf"), float("-inf")
+        if reach > c.start + EPS:  # earlier clips cover its start
+            lo, hi = c.start, min(c.end, reach)
+        if i + 1 < n and clips[i + 1].start < c.end - EPS:  # later clips start inside it
+            lo = min(lo, clips[i + 1].start)
+            hi = max(hi, min(c.end, later_reach[i + 1]))
+        if hi - lo > EPS:
+            found[c.id] = ((lo, hi),)
+        reach = max(reach, c.end)
+    return found
 
 
 def into_gap(project: Project, clip_ids: list[str], at: float) -> Project:
