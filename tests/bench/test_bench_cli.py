@@ -11,7 +11,8 @@ from timeline.cli.main import main
 
 PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_speed")
 TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
-          "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency")  # fmt: skip
+          "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency",
+          "Vibration formats:")  # fmt: skip
 
 
 def test_quick_bench_prints_tables_and_writes_plots(tmp_path: Path) -> None:
@@ -42,4 +43,4 @@ def test_list_names_every_benchmark(capsys) -> None:
     assert main(["bench", "--list"]) == 0
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
-                     "accumulation", "edit-to-feel"]  # fmt: skip
+                     "accumulation", "edit-to-feel", "formats"]  # fmt: skip
