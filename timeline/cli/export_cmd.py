@@ -6,7 +6,6 @@ import argparse
 import sys
 
 from timeline.cli.options import positive
-from timeline.exporting import export_project_file
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -39,6 +38,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.exporting import export_project_file
+
     options = {"fixed_point": True} if args.fixed_point else {}
     export_project_file(args.project, args.output, rate=args.rate, **options)
     print(f"exported {args.project} -> {args.output}", file=sys.stderr)
