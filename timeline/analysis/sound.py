@@ -20,9 +20,10 @@ from timeline.analysis.onsets import emphasis
 from timeline.analysis.reduce import RegionReducer
 from timeline.analysis.settings import DEFAULTS, AnalysisSettings
 from timeline.analysis.spectrum import SpectrumFrames, frequency_values
+from timeline.errors import HapticTimelineError
 
 
-class AnalysisError(ValueError):
+class AnalysisError(HapticTimelineError):
     """A sound the analysis cannot use (no samples, no rate, non-finite samples)."""
 
 
@@ -111,8 +112,12 @@ def analyse_blocks(
     )
     spectrum = SpectrumFrames.create(rate, settings)
     events = _AmplitudeEvents(rate, settings.update, length)
-    amp = RegionReducer(settings.amplitude_points_per_second, settings.minimum_score, None)
-    freq = RegionReducer(settings.frequency_points_per_second, settings.minimum_score, None)
+    amp = RegionReducer(
+        settings.amplitude_points_per_second, settings.minimum_score, settings.tolerance
+    )
+    freq = RegionReducer(
+        settings.frequency_points_per_second, settings.minimum_score, settings.tolerance
+    )
     flux_t: list[np.ndarray] = []
     flux_v: list[np.ndarray] = []
 
