@@ -22,13 +22,21 @@ from timeline.atomic import write_atomically
 from timeline.errors import HapticTimelineError, ProjectFileError
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
+from timeline.vibration_design import Emphasis, VibrationDesign
+from timeline.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
-SCHEMA = 1
+SCHEMA = 2
 MAX_FILE_BYTES = 4 * 2**30
 
+
+def _schema_1_to_2(doc: dict) -> dict:
+    """Schema 2 added the "vibration" tile type; a schema 1 file has none, so nothing changes."""
+    return {**doc, "schema": 2}
+
+
 # Upgrade functions keyed by the schema version they read; each returns the next version's dict.
-MIGRATIONS: dict[int, Callable[[dict], dict]] = {}
+MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2}
 
 
 # --- writing -----------------------------------------------------------------------------------
@@ -61,6 +69,18 @@ def _tile_to_json(tile: Tile, media: dict[str, Any]) -> dict[str, Any]:
             "duration": tile.duration,
             "method": tile.method,
             "points": [list(p) for p in tile.points],
+        }
+    if isinstance(tile, VibrationTile):
+        design = tile.design
+        return {
+            "type": "vibration",
+            "name": tile.name,
+            "source": tile.source,
+            "sharpness": tile.sharpness,
+            "duration": design.duration,
+            "amplitude": [list(p) for p in design.amplitude],
+            "frequency": [list(p) for p in design.frequency],
+            "emphasis": [[e.time, e.amplitude, e.frequency] for e in design.emphasis],
         }
     return {
         "type": "generator",
@@ -229,7 +249,31 @@ def _tile_from_json(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
             tuple(params.items()),
             name,
         )
+    if kind == "vibration":
+        return _vibration_from_json(obj, name, where)
     raise _Bad(f"{where} has unknown tile type {kind!r}")
+
+
+def _number_rows(obj: Any, key: str, width: int, where: str) -> list[tuple[float, ...]]:
+    rows = _get(obj, key, list, where)
+    if not all(
+        isinstance(r, list)
+        and len(r) == width
+        and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in r)
+        for r in rows
+    ):
+        raise _Bad(f"{where}.{key} should be lists of {width} numbers")
+    return [tuple(float(x) for x in r) for r in rows]
+
+
+def _vibration_from_json(obj: Any, name: str, where: str) -> VibrationTile:
+    design = VibrationDesign(
+        tuple(_number_rows(obj, "amplitude", 2, where)),  # type: ignore[arg-type]
+        tuple(_number_rows(obj, "frequency", 2, where)),  # type: ignore[arg-type]
+        tuple(Emphasis(*e) for e in _number_rows(obj, "emphasis", 3, where)),
+        _num(obj, "duration", where),
+    )
+    return VibrationTile(design, name, obj.get("source", ""), _get(obj, "sharpness", str, where))
 
 
 def _fade_from_json(obj: Any, where: str) -> Fade:

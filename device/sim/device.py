@@ -32,7 +32,9 @@ class SimKnob(Device):
     @property
     def info(self) -> DeviceInfo:
         p = self.params
-        return DeviceInfo("sim", "kinesthetic", p.rate, p.max_torque, p.quantum, p.firmware)
+        return DeviceInfo(
+            "sim", "kinesthetic", p.rate, p.max_torque, p.quantum, p.firmware, p.dynamics
+        )
 
     @classmethod
     def discover(cls) -> list[str]:

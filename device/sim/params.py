@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from timeline.devices import DeviceError
+from timeline.devices import DeviceError, Dynamics
 
 ENCODER_QUANTUM = math.radians(0.001)  # rad per count: 0.001 deg
 
@@ -39,6 +39,13 @@ class KnobParams:
                 raise DeviceError(f"the knob's {name.replace('_', ' ')} must be >= 0, not {value}")
         if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
             raise DeviceError("the knob's rate, max torque and inertia must be positive")
+
+    @property
+    def dynamics(self) -> Dynamics:
+        """The rotor and servo loop as the design checks see them."""
+        return Dynamics(
+            self.inertia, self.viscous, 0, self.velocity_cutoff, self.acceleration_cutoff
+        )
 
     @property
     def period(self) -> float:

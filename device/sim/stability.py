@@ -1,8 +1,13 @@
-"""Limits of stable rendering on a sampled knob, and flags for samples that break them.
+"""Flags for samples the simulated knob cannot render stably: stiffness, damping and mass.
 
-Colgate & Schenkel (1997) / Colgate & Brown (1994): a virtual spring K and damper B rendered at
-period T with zero-order hold and a backward-difference velocity is passive when
-b_dev > K*T/2 + |B|, so the largest passive stiffness is K_pass = 2*(b_dev - |B|)/T.
+The limits come from the device-agnostic servo-loop model (timeline/limits/servo.py) with the
+knob's own inertia, damping, estimator filters and delay:
+
+* stiffness: passivity, K_pass = (b_dev - |B|) / (T*(1/2 + D)) (Colgate & Schenkel 1997, with
+  a delay of D periods);
+* damping: B above the largest damping the free knob renders stably (about 2*J/T), or negative
+  (active);
+* mass: m outside the band the loop renders stably, or J + m <= 0 (the inertia cancelled).
 """
 
 from __future__ import annotations
@@ -11,15 +16,12 @@ import numpy as np
 
 from device.sim.params import KnobParams
 from timeline.devices import StabilityFlag
+from timeline.limits import servo
 
 
-def passive_stiffness(device_damping: float, virtual_damping, period: float):
-    """K_pass = 2*(b_dev - |B|)/T (N*m/rad); works on scalars and arrays.
-
-    An absurd virtual damping gives -inf (nothing is passive), which is the right answer.
-    """
-    with np.errstate(over="ignore"):
-        return 2.0 * (device_damping - np.abs(virtual_damping)) / period
+def passive_stiffness(device_damping: float, virtual_damping, period: float, delay: int = 0):
+    """K_pass = (b_dev - |B|)/(T*(1/2 + D)) (N*m/rad); works on scalars and arrays."""
+    return servo.passive_stiffness(device_damping, virtual_damping, period, delay)
 
 
 def stable_stiffness(device_damping: float, virtual_damping, period: float):
@@ -35,45 +37,51 @@ def stability_flags(
     mass: np.ndarray | None,
     params: KnobParams,
 ) -> list[StabilityFlag]:
-    """Flag samples above the passive stiffness, with negative damping, or cancelling inertia.
+    """Flag samples beyond the stiffness, damping or mass limits of the knob's servo loop.
 
-    The passivity rule applies to samples that render a spring (k > 0); a sample is flagged
-    when k > K_pass, strictly, and its margin is k - K_pass.
+    Each rule flags samples strictly beyond its limit; a flag's margins say by how much.
     """
+    dyn, period = params.dynamics, params.period
     flags = []
-    k_pass = passive_stiffness(params.viscous, damping, params.period)
-    over = (stiffness > 0) & (stiffness > k_pass)
-    if over.any():
-        flags.append(
-            StabilityFlag(
-                "passivity",
-                "stiffness above the largest passive stiffness 2*(b_dev - |B|)/T",
-                time[over],
-                (stiffness - k_pass)[over],
-                "N*m/rad",
-            )
-        )
-    negative = damping < 0
-    if negative.any():
-        flags.append(
-            StabilityFlag(
-                "negative-damping",
-                "negative virtual damping (active)",
-                time[negative],
-                -damping[negative],
-                "N*m*s/rad",
-            )
-        )
+
+    def flag(kind: str, message: str, where: np.ndarray, margin: np.ndarray, unit: str) -> None:
+        if where.any():
+            flags.append(StabilityFlag(kind, message, time[where], margin[where], unit))
+
+    k_pass = passive_stiffness(dyn.damping, damping, period, dyn.delay)
+    flag(
+        "passivity",
+        "stiffness above the largest passive stiffness (b_dev - |B|)/(T*(1/2 + delay))",
+        (stiffness > 0) & (stiffness > k_pass),
+        stiffness - k_pass,
+        "N*m/rad",
+    )
+    flag("negative-damping", "negative virtual damping (active)", damping < 0, -damping,
+         "N*m*s/rad")  # fmt: skip
+    b_max = servo.damping_limit(dyn, period)
+    flag(
+        "damping-limit",
+        f"virtual damping above the largest the servo loop renders stably ({b_max:.4g} N*m*s/rad)",
+        damping > b_max,
+        damping - b_max,
+        "N*m*s/rad",
+    )
     if mass is not None:
         cancel = params.inertia + mass <= 0
-        if cancel.any():
-            flags.append(
-                StabilityFlag(
-                    "mass-cancels-inertia",
-                    f"virtual mass cancels the rotor inertia (J + m <= 0, J = {params.inertia:g})",
-                    time[cancel],
-                    -(params.inertia + mass[cancel]),
-                    "kg*m^2",
-                )
-            )
+        flag(
+            "mass-cancels-inertia",
+            f"virtual mass cancels the rotor inertia (J + m <= 0, J = {params.inertia:g})",
+            cancel,
+            -(params.inertia + mass),
+            "kg*m^2",
+        )
+        low, high = servo.mass_limits(dyn, period)
+        flag(
+            "mass-limit",
+            f"virtual mass outside the band the servo loop renders stably ({low:.4g} to "
+            f"{high:.4g} kg*m^2)",
+            ~cancel & ((mass > high) | (mass < low)),
+            np.where(mass > high, mass - high, low - mass),
+            "kg*m^2",
+        )
     return flags

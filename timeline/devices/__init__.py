@@ -10,6 +10,7 @@ never imports a particular plugin.
 """
 
 from timeline.devices.device import Device, Progress, device_names, open_device
+from timeline.devices.dynamics import ACTUATOR_TYPES, Actuator, Dynamics
 from timeline.devices.errors import DeviceError, HandSpecError
 from timeline.devices.hand import DEFAULT_PUSH_MNM, DEFAULT_TURN_DEG_PER_S, HAND_MODES, Hand
 from timeline.devices.info import KINDS, DeviceInfo
@@ -24,15 +25,18 @@ from timeline.devices.telemetry import (
 )
 
 __all__ = [
+    "ACTUATOR_TYPES",
     "DEFAULT_PUSH_MNM",
     "DEFAULT_TURN_DEG_PER_S",
     "HAND_MODES",
     "KINDS",
     "TELEMETRY_COLUMNS",
+    "Actuator",
     "CoefficientBlock",
     "Device",
     "DeviceError",
     "DeviceInfo",
+    "Dynamics",
     "Hand",
     "HandSpecError",
     "LiveTelemetry",

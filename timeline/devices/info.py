@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from timeline.devices.dynamics import Actuator, Dynamics
 from timeline.devices.errors import DeviceError
 
 KINDS = ("kinesthetic", "vibrotactile")
@@ -12,7 +13,12 @@ KINDS = ("kinesthetic", "vibrotactile")
 
 @dataclass(frozen=True)
 class DeviceInfo:
-    """What a device declares about itself."""
+    """What a device declares about itself.
+
+    The optional declarations feed the design checks (timeline/limits/): `dynamics` (rotor and
+    servo loop, kinesthetic devices), `slew` (largest output change per second, in max_output
+    units per second) and `actuator` (a vibrotactile device's frequency response).
+    """
 
     name: str
     kind: str  # "kinesthetic" or "vibrotactile"
@@ -20,6 +26,9 @@ class DeviceInfo:
     max_output: float  # N*m (kinesthetic) or fraction of full scale (vibrotactile)
     resolution: float  # rad per encoder count (0 when the device has no encoder)
     firmware: str = ""
+    dynamics: Dynamics | None = None
+    slew: float | None = None
+    actuator: Actuator | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -36,6 +45,8 @@ class DeviceInfo:
             raise DeviceError(
                 f"a device's resolution must be zero or positive, not {self.resolution}"
             )
+        if self.slew is not None and not (math.isfinite(float(self.slew)) and self.slew > 0):
+            raise DeviceError(f"a device's slew limit must be positive, not {self.slew}")
 
     @property
     def period(self) -> float:

@@ -1,0 +1,92 @@
+"""Damping and virtual-mass limits: computed from the servo loop, flagged at the boundary, felt.
+
+The sim's filters stay on (its defaults); quantisation and Coulomb friction are off, so the knob
+is the linear loop the limits are computed on.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from device.sim import KnobParams, KnobPhysics, stability_flags
+from timeline.devices import CoefficientBlock, Dynamics, Hand
+from timeline.limits import servo
+
+LINEAR = dict(quantum=0.0, coulomb=0.0)
+
+
+def test_damping_limit_is_two_inertias_per_period_with_a_raw_estimate() -> None:
+    dyn = Dynamics(inertia=1e-5, damping=0.0)
+    assert servo.damping_limit(dyn, 1e-4) == pytest.approx(2 * 1e-5 / 1e-4, rel=1e-6)
+
+
+def test_stable_stiffness_matches_the_reference_and_the_delayed_passivity_bound() -> None:
+    assert servo.stable_stiffness(Dynamics(1e-5, 1e-4), 1e-4) == pytest.approx(2.0, rel=1e-3)
+    delayed = Dynamics(1e-5, 1e-4, delay=1)
+    assert servo.stable_stiffness(delayed, 1e-4) == pytest.approx(
+        servo.passive_stiffness(1e-4, 0.0, 1e-4, 1), rel=1e-3
+    )
+    assert servo.passive_stiffness(1e-4, 0.0, 1e-4, 1) == pytest.approx(2.0 / 3.0)
+
+
+def test_a_delay_lowers_every_limit() -> None:
+    now, late = Dynamics(1e-5, 1e-4, 0, 2000, 200), Dynamics(1e-5, 1e-4, 1, 2000, 200)
+    assert servo.damping_limit(late, 1e-4) < 0.5 * servo.damping_limit(now, 1e-4)
+    assert servo.mass_limits(late, 1e-4)[1] < 0.5 * servo.mass_limits(now, 1e-4)[1]
+
+
+@pytest.mark.parametrize(
+    ("layer", "fraction", "flagged"),
+    [("b", 0.999, False), ("b", 1.0, False), ("b", 1.001, True), ("m", 0.999, False),
+     ("m", 1.0, False), ("m", 1.001, True), ("m-", 0.999, False), ("m-", 1.001, True)],
+)  # fmt: skip
+def test_flags_fire_just_above_the_limit(layer: str, fraction: float, flagged: bool) -> None:
+    p = KnobParams()
+    low, high = servo.mass_limits(p.dynamics, p.period)
+    limit = {"b": servo.damping_limit(p.dynamics, p.period), "m": high, "m-": low}[layer]
+    value = np.array([fraction * limit])
+    zero = np.zeros(1)
+    damping = value if layer == "b" else zero
+    mass = zero if layer == "b" else value
+    kinds = {f.kind for f in stability_flags(np.zeros(1), zero, damping, mass, p)}
+    # with the knob's own damping the lowest stable mass is -J: below it the inertia is cancelled
+    name = {"b": "damping-limit", "m": "mass-limit", "m-": "mass-cancels-inertia"}[layer]
+    assert (name in kinds) == flagged
+    if flagged:
+        flags = stability_flags(np.zeros(1), zero, damping, mass, p)
+        flag = next(f for f in flags if f.kind == name)
+        assert flag.margins[0] == pytest.approx(abs(0.001 * limit), rel=1e-6)
+
+
+def _kicked(layer: str, value: float, seconds: float = 0.4) -> np.ndarray:
+    """A free linear knob rendering one layer at a constant value after a short kick: its torque."""
+    p = KnobParams(**LINEAR)
+    knob = KnobPhysics(p)
+    knob.start(Hand("free"))
+    n = int(seconds * p.rate)
+    d = np.zeros(n)
+    d[:5] = 1e-3
+    zero = np.zeros(n)
+    b = np.full(n, value) if layer == "b" else zero
+    m = np.full(n, value) if layer == "m" else zero
+    tel = knob.run_block(CoefficientBlock(d, zero, b, m))
+    return tel.torque
+
+
+@pytest.mark.parametrize("layer", ["b", "m"])
+@pytest.mark.parametrize("fraction", [0.95, 1.05])
+def test_knob_rings_down_below_the_limit_and_chatters_above(layer: str, fraction: float) -> None:
+    p = KnobParams(**LINEAR)
+    limit = (
+        servo.damping_limit(p.dynamics, p.period)
+        if layer == "b"
+        else servo.mass_limits(p.dynamics, p.period)[1]
+    )
+    torque = _kicked(layer, fraction * limit)
+    early = np.abs(torque[10:1000]).max()
+    late = np.abs(torque[-800:]).max()
+    if fraction < 1:
+        assert late < 0.5 * early
+    else:  # the kick of 1 mNm grows into chatter at the amplifier's limit
+        assert late > 0.9 * p.max_torque and late > 100 * np.abs(torque[10:20]).max()

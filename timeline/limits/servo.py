@@ -1,0 +1,122 @@
+"""Stability limits of a sampled knob's servo loop: stiffness, damping and virtual mass.
+
+The loop a kinesthetic device runs each period T: read the encoder, estimate velocity (backward
+difference, first-order low-pass) and acceleration (difference of the velocity estimate,
+low-passed), compute tau = -k*theta - b*theta_dot - m*theta_ddot, apply it `delay` periods later
+and hold it over a period on a rotor of inertia J and viscous damping b_dev. With an ideal sensor
+and no friction that loop is linear, so its period-to-period map is a matrix and it is stable
+exactly when every eigenvalue lies inside the unit circle (`spectral_radius` < 1). The limits
+below are found on that map, with the knob free (no hand): a hand adds inertia and damping and
+steadies the knob, so the free knob is the case to design for.
+
+* stiffness: passivity (Colgate & Schenkel 1997): b_dev > K*T/2 + |B|; with a computation delay
+  of D periods the held torque is older by D*T and the bound becomes b_dev > K*T*(1/2 + D) + |B|
+  (the same energy-leak argument; Diolaiti et al. 2006 treat delay this way).
+* damping: the largest B with the free knob's loop stable (about 2*J/T with a raw backward
+  difference and no delay).
+* mass: the band of m (negative to positive) with the loop stable; J + m <= 0 is never allowed.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import numpy as np
+from scipy.linalg import expm
+
+from timeline.devices import Dynamics
+
+UNSTABLE = 1.0 + 1e-9  # spectral radius above this grows; the free knob's angle mode sits at 1
+
+
+def passive_stiffness(device_damping: float, virtual_damping, period: float, delay: int = 0):
+    """K_pass = (b_dev - |B|) / (T*(1/2 + D)) in N*m/rad; scalars or arrays.
+
+    An absurd virtual damping gives -inf (nothing is passive), which is the right answer.
+    """
+    with np.errstate(over="ignore"):
+        return (device_damping - np.abs(virtual_damping)) / (period * (0.5 + delay))
+
+
+def smoothing(cutoff: float, rate: float) -> float:
+    """Gain of a first-order low-pass at a cut-off (1.0 = no filtering)."""
+    return 1.0 if cutoff <= 0 else 1.0 - math.exp(-2.0 * math.pi * cutoff / rate)
+
+
+def loop_matrix(
+    dynamics: Dynamics, period: float, k: float = 0.0, b: float = 0.0, m: float = 0.0
+) -> np.ndarray:
+    """The free knob's closed loop over one period, state [theta, omega, meas, vel, prev_vel,
+    acc, tau(n-1) ... tau(n-D)]."""
+    j, bd, delay = dynamics.inertia, dynamics.damping, int(dynamics.delay)
+    rate = 1.0 / period
+    av = smoothing(dynamics.velocity_cutoff, rate)
+    aa = smoothing(dynamics.acceleration_cutoff, rate)
+    size = 6 + delay
+    a = np.zeros((3, 3))
+    a[0, 1], a[1, 1], a[1, 2] = 1.0, -bd / j, 1.0 / j
+    plant = expm(a * period)  # zero-order hold: [theta, omega, u] -> next
+    e = np.eye(size)
+    theta, omega, meas, vel, prev_vel, acc = e[:6]
+    new_vel = (1.0 - av) * vel + av * rate * (theta - meas)
+    new_acc = (1.0 - aa) * acc + aa * rate * (new_vel - prev_vel)
+    tau = -k * theta - b * new_vel - m * new_acc
+    applied = e[5 + delay] if delay else tau
+    rows = [
+        plant[0, 0] * theta + plant[0, 1] * omega + plant[0, 2] * applied,
+        plant[1, 0] * theta + plant[1, 1] * omega + plant[1, 2] * applied,
+        theta,
+        new_vel,
+        new_vel,
+        new_acc,
+    ]
+    if delay:
+        rows.append(tau)
+        rows.extend(e[6 : 5 + delay])
+    return np.array(rows)
+
+
+def spectral_radius(matrix: np.ndarray) -> float:
+    """Largest eigenvalue magnitude (above 1: the loop grows)."""
+    return float(np.abs(np.linalg.eigvals(matrix)).max())
+
+
+def _edge(dynamics: Dynamics, period: float, layer: str, sign: float) -> float:
+    """The magnitude of k, b or m (with the others zero) at which the loop turns unstable."""
+
+    def stable(x: float) -> bool:
+        return spectral_radius(loop_matrix(dynamics, period, **{layer: sign * x})) <= UNSTABLE
+
+    scale = {"k": 1.0, "b": dynamics.inertia / period, "m": dynamics.inertia}[layer]
+    if sign < 0 and layer == "m":
+        hi = dynamics.inertia  # J + m <= 0 is never stable
+    else:
+        hi = scale
+        while stable(hi):
+            hi *= 2.0
+            if hi > 1e12 * scale:
+                return math.inf
+    lo = 0.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if stable(mid) else (lo, mid)
+    return lo
+
+
+@lru_cache(maxsize=64)
+def damping_limit(dynamics: Dynamics, period: float) -> float:
+    """Largest virtual damping B (N*m*s/rad) the free knob's loop renders stably."""
+    return _edge(dynamics, period, "b", 1.0)
+
+
+@lru_cache(maxsize=64)
+def mass_limits(dynamics: Dynamics, period: float) -> tuple[float, float]:
+    """(lowest, highest) virtual mass m (kg*m^2) the free knob's loop renders stably."""
+    return -_edge(dynamics, period, "m", -1.0), _edge(dynamics, period, "m", 1.0)
+
+
+@lru_cache(maxsize=64)
+def stable_stiffness(dynamics: Dynamics, period: float) -> float:
+    """Largest stiffness K (N*m/rad) with the free knob's loop stable (B = m = 0)."""
+    return _edge(dynamics, period, "k", 1.0)
