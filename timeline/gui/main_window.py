@@ -26,6 +26,7 @@ from . import variants
 from .autosave import Autosaver, Recoverable, recoverable
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
+from .findings_overlay import FindingsOverlay
 from .message_bar import MessageBar
 from .palette import Palette
 from .player import Player
@@ -57,6 +58,7 @@ class MainWindow(QMainWindow):
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self._build()
         self.autosaver = Autosaver(self.doc)
+        self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
         self.doc.changed.connect(self._changed)
         self.doc.message.connect(self.messages.show_message)
         self.doc.modified_changed.connect(lambda _: self._update_title())
@@ -547,5 +549,6 @@ class MainWindow(QMainWindow):
             event.ignore()
             return
         self.player.close()
+        self.findings.close()
         self.autosaver.discard()
         event.accept()
