@@ -32,6 +32,7 @@ from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
 from .ruler import Ruler
+from .similarity_map import similarity_window
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
 from .transport import Transport
@@ -183,6 +184,8 @@ class MainWindow(QMainWindow):
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
+        self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
+        self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
 
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
