@@ -22,7 +22,7 @@ from .gestures.pivot import PivotGesture
 from .gestures.rubber_band import RubberBandGesture
 from .gestures.stretch import StretchGesture
 from .gestures.trim import TrimGesture
-from .snapping import clip_edges, snap
+from .snapping import EdgeIndex, snap
 from .timeline_scene import TimelineScene
 
 SNAP_PX = 8.0
@@ -52,6 +52,7 @@ class TimelineView(QGraphicsView):
         super().__init__(self._scene)
         self.doc = doc
         self.snapping = True
+        self._edges = EdgeIndex()
         self.gesture: Gesture | None = None
         self.drop: PaletteDrop | None = None
         self.setAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
@@ -97,8 +98,8 @@ class TimelineView(QGraphicsView):
         """Snap an axis position to clip edges or the grid, if snapping is on."""
         if not self.snapping:
             return u
-        edges = clip_edges(self.doc.project, dragged)
-        return snap(u, edges, self.scene().grid_step(), self.geometry.u(SNAP_PX))
+        nearest = self._edges.nearest(self.doc.project, u, dragged)
+        return snap(u, [nearest], self.scene().grid_step(), self.geometry.u(SNAP_PX))
 
     # --- zoom and scroll -------------------------------------------------------------------
 
