@@ -36,7 +36,11 @@ def test_typing_a_template_sine_frequency_edits_a_copy_in_one_step(window):
     assert boxes["frequency"].value() == 5.0 and boxes["frequency"].suffix() == " Hz"
     assert boxes["length"].value() == 1.0 and boxes["length"].suffix() == " s"
     before = win.doc.project
-    type_into(boxes["frequency"], "12")
+    box = boxes["frequency"]
+    type_into(box, "12")
+    # the copy has the same fields: the box that was typed into lives on (deleting it from its
+    # own editingFinished crashed the real window)
+    assert win.inspector.boxes["frequency"] is box
     project = win.doc.project
     clip = project.find_clip(c1)[1]
     copy = project.tile(clip.tile_id)

@@ -84,7 +84,7 @@ class Inspector(QWidget):
         layout.addWidget(self.title)
         layout.addLayout(self.form)
         layout.addStretch(1)
-        self.setMinimumWidth(190)
+        self.setMinimumWidth(240)
         doc.changed.connect(lambda _: self.refresh())
         doc.selection_changed.connect(self.refresh)
         self.refresh()
@@ -97,7 +97,7 @@ class Inspector(QWidget):
         names = [] if tile is None else ["length"]
         if isinstance(tile, GeneratorTile):
             names += [k for k, _ in tile.params]
-        shape = (tile_id, axis, tuple(names))
+        shape = (getattr(tile, "generator", type(tile).__name__), axis, tuple(names))
         if shape != self._shown:
             self._rebuild(names, axis, tile)
             self._shown = shape
@@ -124,7 +124,12 @@ class Inspector(QWidget):
 
     def _rebuild(self, names: list[str], axis: str, tile) -> None:
         while self.form.rowCount():
-            self.form.removeRow(0)
+            # a field may be the one whose Enter led here: delete it once its signal returns
+            row = self.form.takeRow(0)
+            for part in (row.labelItem, row.fieldItem):
+                if part is not None and part.widget() is not None:
+                    part.widget().hide()
+                    part.widget().deleteLater()
         self.boxes, self.labels = {}, {}
         for name in names:
             unit = self._unit(name, axis, tile)[1]
