@@ -17,10 +17,12 @@ MODULES = (
     "timeline.bench.resampler",
     "timeline.bench.sim_integrators",
     "timeline.bench.sim_speed",
+    "timeline.bench.estimator",
     "timeline.bench.accumulation",
     "timeline.bench.edit_to_feel",
     "timeline.bench.scale",
     "timeline.bench.convert",
+    "timeline.bench.formats",
 )
 
 

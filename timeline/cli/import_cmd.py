@@ -7,6 +7,7 @@ import sys
 import time
 from typing import TextIO
 
+from timeline.cli.notes import print_notes
 from timeline.cli.options import number, positive
 from timeline.kinds import DEFAULT_KIND
 
@@ -55,8 +56,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 class ProgressBar:
     """A one-line progress bar on a stream, shown only once a read has taken half a second."""
 
-    def __init__(self, label: str, stream: TextIO = sys.stderr, delay: float = 0.5) -> None:
-        self.label, self.stream, self.delay = label, stream, delay
+    def __init__(self, label: str, stream: TextIO | None = None, delay: float = 0.5) -> None:
+        # sys.stderr as it is now, not as it was when this module was imported
+        self.label, self.stream, self.delay = label, stream or sys.stderr, delay
         self.started = time.monotonic()
         self.shown = False
 
@@ -79,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
 
     bar = ProgressBar(f"importing {args.file}")
     try:
-        clip_ids = import_into_project_file(
+        clip_ids, notes = import_into_project_file(
             args.file,
             args.into,
             kind=args.track,
@@ -96,4 +98,5 @@ def run(args: argparse.Namespace) -> int:
         f"imported {args.file} into {args.into}: {len(clip_ids)} clip(s) at {args.at:g}",
         file=sys.stderr,
     )
+    print_notes(notes)
     return 0
