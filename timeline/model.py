@@ -15,6 +15,7 @@ from typing import Any
 from immutables import Map
 
 from timeline.errors import EditError
+from timeline.markers import LoopRegion, Marker
 from timeline.tiles import Tile
 
 AXES = ("time", "position")
@@ -172,7 +173,8 @@ def _tile_map(mapping: Any) -> Map:
 
 @dataclass(frozen=True)
 class Project:
-    """A whole design: axis, rate, tracks, tile library, palette, variants and metadata."""
+    """A whole design: axis, rate, tracks, tile library, palette, variants, markers, loop region
+    and metadata."""
 
     axis: str = "time"
     rate: float = DEFAULT_TIME_RATE
@@ -186,6 +188,8 @@ class Project:
     active_variant: str | None = None
     metadata: MappingProxyType = field(default_factory=lambda: MappingProxyType({}))
     next_id: int = 1
+    markers: tuple[Marker, ...] = ()  # sorted by position (timeline.markers edits them)
+    loop: LoopRegion | None = None
 
     def __post_init__(self) -> None:
         if self.axis not in AXES:

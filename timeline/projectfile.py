@@ -19,14 +19,15 @@ from typing import Any
 import numpy as np
 
 from timeline.atomic import write_atomically
-from timeline.errors import HapticTimelineError, ProjectFileError
+from timeline.errors import EditError, HapticTimelineError, ProjectFileError
+from timeline.markers import LoopRegion, Marker, markers_to_json
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.vibration_design import Emphasis, VibrationDesign
 from timeline.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
-SCHEMA = 2
+SCHEMA = 3  # 2: vibration tiles; 3: markers and the loop region
 MAX_FILE_BYTES = 4 * 2**30
 
 
@@ -35,8 +36,16 @@ def _schema_1_to_2(doc: dict) -> dict:
     return {**doc, "schema": 2}
 
 
+def _schema_2_to_3(doc: dict) -> dict:
+    """Schema 3 added markers and the loop region: an older project has none."""
+    body = doc.get("project")
+    if isinstance(body, dict):
+        body = {**body, "markers": [], "loop": None}
+    return {**doc, "schema": 3, "project": body}
+
+
 # Upgrade functions keyed by the schema version they read; each returns the next version's dict.
-MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2}
+MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2, 2: _schema_2_to_3}
 
 
 # --- writing -----------------------------------------------------------------------------------
@@ -161,6 +170,7 @@ def to_json(project: Project) -> dict[str, Any]:
             for v in project.variants
         ],
         "active_variant": project.active_variant,
+        **markers_to_json(project),
     }
     return {"format": FORMAT, "schema": SCHEMA, "project": body, "media": media}
 
@@ -349,6 +359,28 @@ def _track_from_json(obj: Any, where: str) -> Track:
     )
 
 
+def _markers_from_json(body: dict) -> tuple[tuple[Marker, ...], LoopRegion | None]:
+    markers = []
+    for i, m in enumerate(_get(body, "markers", list, "project")):
+        where = f"project.markers[{i}]"
+        if not isinstance(m, dict):
+            raise _Bad(f"{where} should be an object")
+        try:
+            markers.append(Marker(_get(m, "name", str, where), _num(m, "at", where)))
+        except EditError as exc:
+            raise _Bad(f"{where}: {exc}") from None
+    raw = body.get("loop")
+    if raw is None:
+        return tuple(sorted(markers, key=lambda m: m.at)), None
+    if not (isinstance(raw, list) and len(raw) == 2):
+        raise _Bad("project.loop should be [start, stop] or null")
+    try:
+        loop = LoopRegion(*(float(v) for v in raw))
+    except (TypeError, ValueError, EditError) as exc:
+        raise _Bad(f"project.loop: {exc}") from None
+    return tuple(sorted(markers, key=lambda m: m.at)), loop
+
+
 def _check_references(project: Project) -> None:
     from timeline.kinds import track_kind
 
@@ -427,6 +459,7 @@ def from_json(doc: Any) -> Project:
     if active is not None and not isinstance(active, str):
         raise _Bad("project.active_variant should be a name or null")
     metadata = _get(body, "metadata", dict, "project")
+    markers, loop = _markers_from_json(body)
     project = Project(
         axis=_get(body, "axis", str, "project"),
         rate=_num(body, "rate", "project"),
@@ -437,6 +470,8 @@ def from_json(doc: Any) -> Project:
         active_variant=active,
         metadata=metadata,
         next_id=_get(body, "next_id", int, "project"),
+        markers=markers,
+        loop=loop,
     )
     _check_references(project)
     return project

@@ -14,11 +14,18 @@ from timeline.model import Clip
 from timeline.tiles import Tile
 
 from .clip_shape import clip_columns
-from .geometry import CLIP_MARGIN, Geometry
+from .geometry import CLIP_MARGIN, Geometry, axis_text, gain_text
 
 EDGE_PX = 6.0
 HANDLE_PX = 9.0
+SHAPE_LABEL_PX = 60.0  # fades this long show their shape's name
 VALUE_RANGE = 1.0  # the lane shows -1 .. 1 of the tile's full scale
+
+
+def value_offset(value: float, height: float) -> float:
+    """Distance from a clip's top to where a value (tile units) is drawn, in a clip this high."""
+    half = height / 2 - 3
+    return height / 2 - max(-1.2, min(1.2, value / VALUE_RANGE)) * half
 
 
 class ClipItem(QGraphicsItem):
@@ -38,6 +45,8 @@ class ClipItem(QGraphicsItem):
         self._w = 1.0
         self._h = 1.0
         self._key: tuple = ()
+        self.muted = False
+        self.covered: tuple[tuple[float, float], ...] = ()
 
     def update_from(
         self,
@@ -48,12 +57,32 @@ class ClipItem(QGraphicsItem):
         colour: str,
         rate: float,
         selected: bool,
+        muted: bool = False,
+        covered: tuple[tuple[float, float], ...] = (),
+        axis: str = "time",
     ) -> None:
-        """Show a clip state at a lane (cheap when nothing changed)."""
+        """Show a clip state at a lane (cheap when nothing changed).
+
+        A muted (or not soloed) track's clips are dimmed; `covered` spans (axis units) where
+        another clip overlaps this one are hatched.
+        """
         g = self.geometry
         w = max(2.0, g.x(clip.duration))
         h = g.lane_height - 2 * CLIP_MARGIN
-        key = (clip, id(tile), lane, colour, selected, w, h, g.px_per_unit, rate)
+        key = (
+            clip,
+            id(tile),
+            lane,
+            colour,
+            selected,
+            w,
+            h,
+            g.px_per_unit,
+            rate,
+            muted,
+            covered,
+            axis,
+        )
         if key == self._key:
             return  # nothing to do: no Qt calls for the clips an edit did not touch
         self._key = key
@@ -63,6 +92,9 @@ class ClipItem(QGraphicsItem):
         self.colour, self.selected, self._w, self._h = QColor(colour), selected, w, h
         self.setPos(g.x(clip.start), g.lane_top(lane) + CLIP_MARGIN)
         self.setZValue(2 if selected else 1)
+        self.muted, self.covered = muted, covered
+        self.setOpacity(0.35 if muted else 1.0)
+        self.setToolTip(clip_tip(clip, tile, muted, covered, axis))
         self.update()
 
     # --- geometry and hit zones -----------------------------------------------------------
@@ -77,8 +109,7 @@ class ClipItem(QGraphicsItem):
 
     def value_y(self, value: float) -> float:
         """Item y of a clip value (tile units)."""
-        half = self._h / 2 - 3
-        return self._h / 2 - max(-1.2, min(1.2, value / VALUE_RANGE)) * half
+        return value_offset(value, self._h)
 
     def y_value(self, y: float) -> float:
         """Clip value (tile units) at an item y."""
@@ -126,6 +157,11 @@ class ClipItem(QGraphicsItem):
             y = self.value_y(clip.pivot)
             painter.drawLine(QPointF(0, y), QPointF(w, y))
         self._paint_label(painter)
+        for a, b in self.covered:
+            x0, x1 = self.geometry.x(a - clip.start), self.geometry.x(b - clip.start)
+            painter.setPen(QPen(QColor("#b02020"), 1))
+            painter.setBrush(QBrush(QColor(200, 40, 40, 120), Qt.BrushStyle.BDiagPattern))
+            painter.drawRect(QRectF(x0, h - 10, x1 - x0, 10))
         if self.selected:
             painter.setBrush(Qt.BrushStyle.NoBrush)
             painter.setPen(QPen(QColor("#1a1a1a"), 2))
@@ -176,6 +212,14 @@ class ClipItem(QGraphicsItem):
             handle = self.fade_handle(which)
             painter.setBrush(QBrush(QColor("#ffffff")))
             painter.drawRect(QRectF(handle.x() - 4, 0, 8, 8))
+            if length >= SHAPE_LABEL_PX:
+                font = QFont()
+                font.setPointSizeF(7.0)
+                painter.setFont(font)
+                x = handle.x() - length if which == "in" else handle.x()
+                painter.drawText(
+                    QRectF(x, self._h - 14, length, 12), Qt.AlignmentFlag.AlignCenter, fade.shape
+                )
 
     def _paint_label(self, painter: QPainter) -> None:
         clip, tile = self.clip, self.tile
@@ -203,3 +247,21 @@ class ClipItem(QGraphicsItem):
                 QColor(255, 255, 255, 190),
             )
         painter.drawText(rect, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter, text)
+
+
+def clip_tip(
+    clip: Clip, tile: Tile, muted: bool, covered: tuple[tuple[float, float], ...], axis: str
+) -> str:
+    """The clip's tooltip: tile, where it plays, its gain in dB and x, and what is wrong."""
+    lines = [
+        f"{tile.name}: {axis_text(clip.start, axis)} to {axis_text(clip.end, axis)}",
+        f"gain {gain_text(clip.gain)}",
+    ]
+    if clip.stretch != 1.0:
+        lines.append(f"stretch x{clip.stretch:.3g} ({clip.stretch_mode})")
+    if muted:
+        lines.append("its track is muted (or another is soloed)")
+    if covered:
+        lines.append(f"overlaps another clip for {axis_text(sum(b - a for a, b in covered), axis)}")
+    lines.append("drag to move, edges to trim, Shift-drag for amplitude, right-click for more")
+    return "\n".join(lines)

@@ -93,6 +93,15 @@ class Document(QObject):
         self._prune_selection()
         self._emit_changed()
 
+    def go_to(self, index: int) -> None:
+        """Jump to a step of the history (Edit > History)."""
+        if index == self.history.index:
+            return
+        self.history.go_to(index)
+        self.message.emit(f"back to: {self.history.labels[index]}", "info")
+        self._prune_selection()
+        self._emit_changed()
+
     def reset(self, project: Project, path: Path | None) -> None:
         """Start over on another project (a fresh history, nothing selected)."""
         self.history = History(project)

@@ -12,6 +12,7 @@ from PySide6.QtWidgets import QGraphicsLineItem, QGraphicsScene
 
 from timeline.kinds import track_kind
 from timeline.model import Project, Track
+from timeline.placement import overlaps
 from timeline.tiles import Tile
 
 from .clip_item import ClipItem
@@ -28,7 +29,7 @@ class _TrackShown:
     track: Track
     lane: int
     selected: frozenset[str]
-    view: tuple  # zoom, lane height and project rate
+    view: tuple  # zoom, lane height, project rate and whether the track is muted
     tiles: dict[str, Tile]  # tile id -> the tile object its clips were drawn from
 
     @property
@@ -87,13 +88,18 @@ class TimelineScene(QGraphicsScene):
             if item is not None:
                 selected_by_track.setdefault(item.track_id, set()).add(clip_id)
         shown: dict[str, _TrackShown] = {}
+        soloing = any(t.solo for t in project.tracks)
         for lane, track in enumerate(project.tracks):
             selected = frozenset(selected_by_track.get(track.id, ()))
             before = self._shown.get(track.id)
-            if before is not None and before.same(track, lane, selected, view, tiles):
+            muted = (not track.solo) if soloing else track.mute
+            track_view = (*view, muted)  # a mute or solo elsewhere dims or lights this lane
+            if before is not None and before.same(track, lane, selected, track_view, tiles):
                 shown[track.id] = before
                 continue
-            shown[track.id] = self._show_track(project, track, lane, view, before, tiles is None)
+            shown[track.id] = self._show_track(
+                project, track, lane, track_view, before, tiles is None
+            )
             if before is not None:
                 self._drop_items(before.clip_ids - shown[track.id].clip_ids, track.id)
         for track_id in self._shown.keys() - shown.keys():
@@ -117,9 +123,13 @@ class TimelineScene(QGraphicsScene):
         if before is not None and same_tiles and before.lane == lane and before.view == view:
             unchanged = before.track.clips_by_id
             tiles = dict(before.tiles)
+        covered = overlaps(project, track.id)
+        muted = view[-1]
         for clip in track.clips:
-            if unchanged.get(clip.id) is clip and (clip.id in self.selection) == (
-                clip.id in before.selected
+            if (
+                unchanged.get(clip.id) is clip
+                and (clip.id in self.selection) == (clip.id in before.selected)
+                and self.items_by_clip[clip.id].covered == covered.get(clip.id, ())
             ):
                 continue
             item = self.items_by_clip.get(clip.id)
@@ -130,7 +140,16 @@ class TimelineScene(QGraphicsScene):
             if tile is None:
                 tile = tiles[clip.tile_id] = project.tile(clip.tile_id)
             item.update_from(
-                clip, tile, track.id, lane, colour, project.rate, clip.id in self.selection
+                clip,
+                tile,
+                track.id,
+                lane,
+                colour,
+                project.rate,
+                clip.id in self.selection,
+                muted,
+                covered.get(clip.id, ()),
+                project.axis,
             )
         selected = frozenset(c.id for c in track.clips if c.id in self.selection)
         return _TrackShown(track, lane, selected, view, tiles)
@@ -184,6 +203,10 @@ class TimelineScene(QGraphicsScene):
         last = math.ceil(g.u(rect.right()) / step)
         painter.setPen(QPen(QColor(0, 0, 0, 25), 1))
         bottom = g.lane_top(lanes)
+        loop = self.project.loop
+        if loop is not None:
+            band = QRectF(g.x(loop.start), 0, g.x(loop.stop) - g.x(loop.start), bottom)
+            painter.fillRect(band.intersected(rect), QColor(56, 160, 90, 30))
         for i in range(first, last + 1):
             x = g.x(i * step)
             painter.drawLine(QLineF(x, 0, x, bottom))
