@@ -55,8 +55,24 @@ INT_RANGES = {
 }
 
 
+LABELS = {
+    "rms_window": "RMS window (s)", "attack": "Attack (s)", "hold": "Hold (s)",
+    "release": "Release (s)", "update": "Update every (s)", "normalize": "Normalise",
+    "level_db": "Level (dBFS)", "gain_db": "Gain (dB)", "fft_size": "FFT size",
+    "overlap": "Overlap", "centroid_lowpass": "Centroid below (Hz)",
+    "frequency_min": "Frequency 0 at (Hz)", "frequency_max": "Frequency 1 at (Hz)",
+    "output_min": "Lowest frequency", "output_max": "Highest frequency",
+    "amplitude_points_per_second": "Amplitude points / s",
+    "frequency_points_per_second": "Frequency points / s", "minimum_score": "Minimum score",
+    "tolerance": "Error bound", "emphasis": "Emphasis", "sensitivity": "Sensitivity (%)",
+    "peak_window": "Peak window (s)", "minimum_rise": "Minimum rise", "plateau": "Plateau (%)",
+    "sharpness_min": "Softest hit frequency", "sharpness_max": "Sharpest hit frequency",
+    "ducking": "Ducking (%)",
+}  # fmt: skip
+
+
 def _label(name: str) -> str:
-    return name.replace("_", " ").capitalize()
+    return LABELS.get(name, name.replace("_", " ").capitalize())
 
 
 class AnalysisPanel(QWidget):
@@ -71,6 +87,7 @@ class AnalysisPanel(QWidget):
         for f in fields(AnalysisSettings):
             widget = self._field(f.name, getattr(DEFAULTS, f.name))
             widget.setToolTip(AnalysisSettings.help(f.name))
+            widget.setMaximumWidth(150)
             form.addRow(_label(f.name), widget)
             self.fields[f.name] = widget
         self.error = QLabel("")
@@ -105,7 +122,7 @@ class AnalysisPanel(QWidget):
         number.setDecimals(decimals)
         number.setSingleStep(10.0 ** -min(decimals, 3) if hi > 1 else 0.01)
         if name == "tolerance":
-            number.setSpecialValueText("off (a count per second)")
+            number.setSpecialValueText("off")
         number.valueChanged.connect(self.changed)
         return number
 
