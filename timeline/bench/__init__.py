@@ -21,6 +21,7 @@ MODULES = (
     "timeline.bench.edit_to_feel",
     "timeline.bench.scale",
     "timeline.bench.convert",
+    "timeline.bench.formats",
 )
 
 

@@ -8,6 +8,7 @@ from pathlib import Path
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
 from PySide6.QtWidgets import (
+    QApplication,
     QFileDialog,
     QGridLayout,
     QMainWindow,
@@ -278,7 +279,14 @@ class MainWindow(QMainWindow):
         self.doc.apply(label, all_of)
 
     def delete(self) -> None:
-        """Remove the selected clips."""
+        """Remove the selected clips, when the timeline (not another region) has focus."""
+        focus = QApplication.focusWidget()
+        elsewhere = (self.palette, self.editor, self.inspector, self.transport, self.headers)
+        if focus is not None and any(r is focus or r.isAncestorOf(focus) for r in elsewhere):
+            self.messages.show_message(
+                "Delete removes clips when the timeline has focus: click a clip first", "error"
+            )
+            return
         ids = list(self.doc.selected_clips)
         if ids:
             self.doc.apply("delete", edits.remove_clips, ids)
