@@ -30,6 +30,25 @@ def bursts(tmp_path: Path) -> Path:
     return path
 
 
+def test_haptic_file_holds_the_analysis(tmp_path: Path, bursts: Path) -> None:
+    out = tmp_path / "bursts.haptic"
+    assert main(["convert", str(bursts), "-o", str(out), "--sensitivity", "100"]) == 0
+    analysis = analyse_file(bursts, AnalysisSettings(sensitivity=100))
+    envelopes = json.loads(out.read_text())["signals"]["continuous"]["envelopes"]
+    written = np.array([(b["time"], b["amplitude"]) for b in envelopes["amplitude"]])
+    np.testing.assert_allclose(written, analysis.amplitude, atol=1e-6)
+    emphasis = [b["time"] for b in envelopes["amplitude"] if "emphasis" in b]
+    np.testing.assert_allclose(emphasis, ONSETS, atol=0.005)
+
+
+def test_ahap_file_has_the_hits_as_transients(tmp_path: Path, bursts: Path) -> None:
+    out = tmp_path / "bursts.ahap"
+    assert main(["convert", str(bursts), "-o", str(out), "--sensitivity", "100"]) == 0
+    events = [p["Event"] for p in json.loads(out.read_text())["Pattern"] if "Event" in p]
+    transients = [e["Time"] for e in events if e["EventType"] == "HapticTransient"]
+    np.testing.assert_allclose(transients, ONSETS, atol=0.005)
+
+
 def test_project_keeps_the_sound_and_an_editable_design(tmp_path: Path, bursts: Path) -> None:
     out = tmp_path / "bursts.htl"
     assert main(["convert", str(bursts), "-o", str(out)]) == 0
