@@ -127,3 +127,17 @@ def test_two_hour_sound(tmp_path: Path, request, capsys) -> None:
     assert amplitude[-1]["time"] == pytest.approx(7200.0)
     assert main(["convert", str(path), "-o", str(tmp_path / "two_hours.htl")]) == 1
     assert "keeps sounds up to 60 minutes" in capsys.readouterr().err
+
+
+def test_a_project_refuses_a_sound_too_long_to_keep(
+    tmp_path: Path, bursts: Path, monkeypatch, capsys
+):
+    import timeline.convert
+
+    monkeypatch.setattr(timeline.convert, "MAX_SOUND_SECONDS", 1.0)
+    out = tmp_path / "long.htl"
+    assert main(["convert", str(bursts), "-o", str(out)]) == 1
+    err = capsys.readouterr().err.strip()
+    assert "keeps sounds up to 0 minutes (convert it to .haptic or .ahap instead)" in err
+    assert not out.exists()
+    assert main(["convert", str(bursts), "-o", str(tmp_path / "long.haptic")]) == 0
