@@ -10,6 +10,7 @@ files hold the design only.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -51,11 +52,18 @@ def design_of_analysis(analysis: SoundAnalysis) -> VibrationDesign:
 
 
 def analyse_sound_file(
-    path: str | os.PathLike, settings: AnalysisSettings = DEFAULTS, *, keep_sound: bool = True
+    path: str | os.PathLike,
+    settings: AnalysisSettings = DEFAULTS,
+    *,
+    keep_sound: bool = True,
+    progress: Callable[[float], None] | None = None,
 ) -> ConvertedSound:
-    """Analyse a sound file; with `keep_sound` also read it (mono) for an audio track."""
+    """Analyse a sound file; with `keep_sound` also read it (mono) for an audio track.
+
+    `progress` hears the fraction analysed; it may raise to stop (the editor's Cancel).
+    """
     path = Path(path)
-    analysis = analyse_file(path, settings)
+    analysis = analyse_file(path, settings, progress)
     if not keep_sound:
         return ConvertedSound(path, analysis, None)
     if analysis.duration > MAX_SOUND_SECONDS:

@@ -113,3 +113,14 @@ def test_plain_drop_still_imports_the_waveform(window, qtbot, bursts):
     qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
     assert "imported bursts.wav" in win.messages.text
     assert all(t.kind != "audio" for t in win.doc.project.tracks)
+
+
+def test_cancel_stops_the_analysis_and_changes_nothing(window, qtbot, tmp_path):
+    win = window
+    path = tmp_path / "long.wav"
+    soundfile.write(path, np.tile(tone_bursts([0.05], 200.0, 1.0, rate=8000), 120), 8000)
+    before = win.doc.project
+    win.sound_import.convert_files([path], "", 0.0)
+    QTest.mouseClick(win.messages.cancel, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
+    assert "cancelled" in win.messages.text and win.doc.project is before

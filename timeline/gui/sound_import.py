@@ -213,12 +213,17 @@ class SoundImport(QObject):
             self.window.messages.show_message(str(exc), "error")
             return
         for path in paths:
-            job = FileJob(lambda _progress, p=path: analyse_sound_file(p, settings))
+            job = FileJob(
+                lambda progress, p=path: analyse_sound_file(p, settings, progress=progress)
+            )
             job.done.connect(lambda found, j=job: self._analysed(j, found, track_id, at))
             self.window._start(job, f"analysing {path.name}…")
 
     def _analysed(self, job: FileJob, found: ConvertedSound, track_id: str, at: float) -> None:
         self.window._finish(job)
+        if job.cancelled:
+            self.window.messages.show_message("import cancelled; nothing was changed")
+            return
         doc = self.window.doc
         drive = next((t.id for t in doc.project.tracks if t.id == track_id and t.kind == "drive"),
                      None)  # fmt: skip
