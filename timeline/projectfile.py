@@ -23,7 +23,6 @@ from timeline.errors import EditError, HapticTimelineError, ProjectFileError
 from timeline.markers import LoopRegion, Marker, markers_to_json
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
-from timeline.vibration_design import Emphasis, VibrationDesign
 from timeline.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
@@ -80,17 +79,7 @@ def _tile_to_json(tile: Tile, media: dict[str, Any]) -> dict[str, Any]:
             "points": [list(p) for p in tile.points],
         }
     if isinstance(tile, VibrationTile):
-        design = tile.design
-        return {
-            "type": "vibration",
-            "name": tile.name,
-            "source": tile.source,
-            "sharpness": tile.sharpness,
-            "duration": design.duration,
-            "amplitude": [list(p) for p in design.amplitude],
-            "frequency": [list(p) for p in design.frequency],
-            "emphasis": [[e.time, e.amplitude, e.frequency] for e in design.emphasis],
-        }
+        return tile.as_json()
     return {
         "type": "generator",
         "name": tile.name,
@@ -286,30 +275,8 @@ def _tile_from_json(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
             name,
         )
     if kind == "vibration":
-        return _vibration_from_json(obj, name, where)
+        return VibrationTile.from_json(obj)
     raise _Bad(f"{where} has unknown tile type {kind!r}")
-
-
-def _number_rows(obj: Any, key: str, width: int, where: str) -> list[tuple[float, ...]]:
-    rows = _get(obj, key, list, where)
-    if not all(
-        isinstance(r, list)
-        and len(r) == width
-        and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in r)
-        for r in rows
-    ):
-        raise _Bad(f"{where}.{key} should be lists of {width} numbers")
-    return [tuple(float(x) for x in r) for r in rows]
-
-
-def _vibration_from_json(obj: Any, name: str, where: str) -> VibrationTile:
-    design = VibrationDesign(
-        tuple(_number_rows(obj, "amplitude", 2, where)),  # type: ignore[arg-type]
-        tuple(_number_rows(obj, "frequency", 2, where)),  # type: ignore[arg-type]
-        tuple(Emphasis(*e) for e in _number_rows(obj, "emphasis", 3, where)),
-        _num(obj, "duration", where),
-    )
-    return VibrationTile(design, name, obj.get("source", ""), _get(obj, "sharpness", str, where))
 
 
 def _fade_from_json(obj: Any, where: str) -> Fade:

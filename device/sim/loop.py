@@ -9,11 +9,16 @@ block (`State`, in this order):
 * prev_meas: the last encoder reading relative to the anchor;
 * vel: the low-passed backward-difference velocity estimate;
 * prev_vel, acc: the previous velocity estimate and the low-passed acceleration estimate
-  (updated only when the project has a mass layer).
+  (updated only when the project has a mass layer);
+* pending: the torque computed in the last period, applied in this one when the firmware has a
+  one-period computation delay.
 
 Each period: read the quantised encoder, update the estimators, compute tau = d - k*theta -
 b*theta_dot - m*theta_ddot (coefficients per period, or T, B, M looked up linearly at the angle
-with k = 0), scale it by the watchdog's gain, clamp it (NaN becomes 0), add the hand's push,
+with k = 0), scale it by the watchdog's gain, clamp it (NaN becomes 0); with a computation
+delay apply the torque computed one period earlier instead (it arrives a period late, as on
+firmware that computes during a period and writes the amplifier at the next tick); add the
+hand's push,
 add Coulomb friction as the torque (within its level) that would stop the rotor in the period,
 and advance the mechanics by the plant's linear map (plant.py, its theta and omega rows).
 """
@@ -23,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-State = tuple[float, float, float, float, float, float, float, float]
+State = tuple[float, float, float, float, float, float, float, float, float]
 
 
 # cache: compiled once per machine (and source change); error_model="numpy": IEEE division, no
@@ -36,7 +41,7 @@ def servo_loop(
     gain: np.ndarray,
     use_mass: bool,
     lookup: tuple[float, float, float],
-    firmware: tuple[float, float, float, float, float, float, float],
+    firmware: tuple[float, float, float, float, float, float, float, float],
     plant: tuple[float, float, float, float, float, float, float, float, float, float],
     hand: tuple[float, float, float, float],
     state: State,
@@ -48,13 +53,14 @@ def servo_loop(
     tables: rows T, B, M over angle (position projects; no columns in time projects), looked up
     at origin + angle, sample j at table angle start + j/rate, `lookup` = (origin, start, rate);
     firmware: rate, period, quantum, max torque, Coulomb level, velocity and acceleration filter
-    gains; plant: the theta row then the omega row of the map over z = [theta, omega, u, r, v];
+    gains, computation delay (0 or 1 period); plant: the theta row then the omega row of the map
+    over z = [theta, omega, u, r, v];
     hand: push torque, push ramp, turning speed, seconds since the play started.
     """
-    rate, period, quantum, tmax, coulomb, av, aa = firmware
+    rate, period, quantum, tmax, coulomb, av, aa, delay = firmware
     t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = plant
     push, push_ramp, speed, elapsed = hand
-    theta, omega, r, anchor, prev_meas, vel, prev_vel, acc = state
+    theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending = state
     origin, tstart, trate = lookup
     in_table = tables.shape[1] > 0
     tlast = tables.shape[1] - 1
@@ -93,6 +99,8 @@ def servo_loop(
         elif tau != tau:
             tau = 0.0
             nonfinite += 1
+        if delay:
+            tau, pending = pending, tau
         u = tau
         if push:
             u += push if elapsed >= push_ramp else push * elapsed / push_ramp
@@ -114,5 +122,5 @@ def servo_loop(
         taus,
         frictions,
         nonfinite,
-        (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc),
+        (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending),
     )

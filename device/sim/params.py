@@ -26,6 +26,7 @@ class KnobParams:
     coulomb: float = 1e-3  # N*m Coulomb friction
     velocity_cutoff: float = 2_000.0  # Hz first-order low-pass on the velocity estimate; 0 = none
     acceleration_cutoff: float = 200.0  # Hz low-pass on the acceleration estimate; 0 = none
+    delay: int = 0  # servo periods between reading the encoder and applying its torque (0 or 1)
     watchdog_timeout: float = 0.005  # s without a block before the torque starts ramping down
     watchdog_ramp: float = 0.010  # s from the last torque to zero
     firmware: str = "sim-1.0"
@@ -37,6 +38,8 @@ class KnobParams:
                 continue
             if not math.isfinite(value) or value < 0:
                 raise DeviceError(f"the knob's {name.replace('_', ' ')} must be >= 0, not {value}")
+        if self.delay not in (0, 1):
+            raise DeviceError(f"the knob's delay is 0 or 1 servo period, not {self.delay}")
         if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
             raise DeviceError("the knob's rate, max torque and inertia must be positive")
 
@@ -44,7 +47,11 @@ class KnobParams:
     def dynamics(self) -> Dynamics:
         """The rotor and servo loop as the design checks see them."""
         return Dynamics(
-            self.inertia, self.viscous, 0, self.velocity_cutoff, self.acceleration_cutoff
+            self.inertia,
+            self.viscous,
+            int(self.delay),
+            self.velocity_cutoff,
+            self.acceleration_cutoff,
         )
 
     @property

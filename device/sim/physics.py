@@ -81,6 +81,7 @@ class KnobPhysics:
         self.vel = 0.0
         self.prev_vel = 0.0
         self.acc = 0.0
+        self.pending = 0.0  # the torque computed last period (applied now, with a delay)
         self.idle = 0  # samples since the last block arrived
         self.last: CoefficientBlock | PositionProgram | None = None
         self.failed: str | None = None
@@ -185,10 +186,10 @@ class KnobPhysics:
             coeffs, tables, use_mass = NO_COEFFS, self._table_rows(tab), tab.mass is not None
             lookup = _floats(origin, tab.start, tab.rate)
         filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
-        firmware = _floats(p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters)
+        firmware = _floats(p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay)
         motion = _floats(hand.push_torque, hand.push_ramp, hand.turn_speed, self.samples * p.period)
-        state = _floats(self.theta, self.omega, self.grip_target, self.anchor,
-                        self.prev_meas, self.vel, self.prev_vel, self.acc)  # fmt: skip
+        state = _floats(self.theta, self.omega, self.grip_target, self.anchor, self.prev_meas,
+                        self.vel, self.prev_vel, self.acc, self.pending)  # fmt: skip
         gain = np.ones(n) if gain is None else gain
         thetas, taus, frictions, nonfinite, state = servo_loop(
             coeffs, tables, gain, use_mass, lookup, firmware, self._map, motion, state
@@ -238,7 +239,7 @@ class KnobPhysics:
         dissipated = p.viscous * step * step * p.rate - frictions * step
         energy = self.energy + np.cumsum(taus * step - dissipated)
         self.theta, self.omega, self.grip_target = theta, omega, grip_target
-        self.prev_meas, self.vel, self.prev_vel, self.acc = estimators
+        self.prev_meas, self.vel, self.prev_vel, self.acc, self.pending = estimators
         self.energy = float(energy[-1]) if energy.size else self.energy
         time = (self.samples + np.arange(done)) * p.period
         self.samples += done
