@@ -11,7 +11,10 @@ block (`State`, in this order):
 * prev_vel, acc: the previous velocity estimate and the low-passed acceleration estimate
   (updated only when the project has a mass layer);
 * pending: the torque computed in the last period, applied in this one when the firmware has a
-  one-period computation delay.
+  one-period computation delay;
+* est_theta: the tracking observer's angle estimate (used only when it estimates; then vel and
+  acc are its velocity and acceleration estimates, observer.py);
+* est_dist, applied: reserved (0) and the motor torque applied in the last period.
 
 Each period: read the quantised encoder, update the estimators, compute tau = d - k*theta -
 b*theta_dot - m*theta_ddot (coefficients per period, or T, B, M looked up linearly at the angle
@@ -28,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-State = tuple[float, float, float, float, float, float, float, float, float]
+State = tuple[float, float, float, float, float, float, float, float, float, float, float, float]
 
 
 # cache: compiled once per machine (and source change); error_model="numpy": IEEE division, no
@@ -45,6 +48,7 @@ def servo_loop(
     plant: tuple[float, float, float, float, float, float, float, float, float, float],
     hand: tuple[float, float, float, float],
     state: State,
+    observer: tuple[float, ...],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, State]:
     """Run len(gain) servo periods; return the true angle before each period, the motor torque,
     the Coulomb friction torque, the count of NaN torques replaced by 0, and the new state.
@@ -55,12 +59,18 @@ def servo_loop(
     firmware: rate, period, quantum, max torque, Coulomb level, velocity and acceleration filter
     gains, computation delay (0 or 1 period); plant: the theta row then the omega row of the map
     over z = [theta, omega, u, r, v];
-    hand: push torque, push ramp, turning speed, seconds since the play started.
+    hand: push torque, push ramp, turning speed, seconds since the play started; observer: on
+    (1.0) or off (0.0), then the tracking model's 3x3 matrix A by rows and the gains L
+    (observer.py).
     """
     rate, period, quantum, tmax, coulomb, av, aa, delay = firmware
     t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = plant
     push, push_ramp, speed, elapsed = hand
-    theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending = state
+    (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending,
+     est_theta, est_dist, applied) = state  # fmt: skip
+    observe = observer[0] != 0.0
+    a00, a01, a02, a10, a11, a12, a20, a21, a22 = observer[1:10]
+    l0, l1, l2 = observer[10:13]
     origin, tstart, trate = lookup
     in_table = tables.shape[1] > 0
     tlast = tables.shape[1] - 1
@@ -73,11 +83,20 @@ def servo_loop(
     d = k = b = m = 0.0
     for i in range(n):
         meas = ((theta * inv_q + 0.5) // 1.0 * quantum if quantum else theta) - anchor
-        vel += av * ((meas - prev_meas) * rate - vel)
+        if observe:  # predict with the model, correct with the reading (observer.py)
+            p0 = a00 * est_theta + a01 * vel + a02 * acc
+            p1 = a10 * est_theta + a11 * vel + a12 * acc
+            p2 = a20 * est_theta + a21 * vel + a22 * acc
+            miss = meas - p0
+            est_theta = p0 + l0 * miss
+            vel = p1 + l1 * miss
+            acc = p2 + l2 * miss
+        else:
+            vel += av * ((meas - prev_meas) * rate - vel)
+            if use_mass:
+                acc += aa * ((vel - prev_vel) * rate - acc)
+                prev_vel = vel
         prev_meas = meas
-        if use_mass:
-            acc += aa * ((vel - prev_vel) * rate - acc)
-            prev_vel = vel
         if in_table:  # T(theta) - B(theta)*theta_dot - M(theta)*theta_ddot, linear lookup
             x = (origin + meas - tstart) * trate
             j = tlast if x >= tlast else (int(x) if x > 0.0 else 0)  # NaN reads sample 0
@@ -101,6 +120,7 @@ def servo_loop(
             nonfinite += 1
         if delay:
             tau, pending = pending, tau
+        applied = tau
         u = tau
         if push:
             u += push if elapsed >= push_ramp else push * elapsed / push_ramp
@@ -122,5 +142,18 @@ def servo_loop(
         taus,
         frictions,
         nonfinite,
-        (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending),
+        (
+            theta,
+            omega,
+            r,
+            anchor,
+            prev_meas,
+            vel,
+            prev_vel,
+            acc,
+            pending,
+            est_theta,
+            est_dist,
+            applied,
+        ),
     )

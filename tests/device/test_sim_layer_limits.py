@@ -120,3 +120,27 @@ def test_the_delay_holds_the_torque_one_period() -> None:
     a = now.run_block(CoefficientBlock(d, zero, zero)).torque
     b = late.run_block(CoefficientBlock(d, zero, zero)).torque
     np.testing.assert_array_equal(b, np.concatenate([[0.0], a[:-1]]))
+
+
+@pytest.mark.parametrize("layer", ["b", "m"])
+@pytest.mark.parametrize("fraction", [0.95, 1.05])
+def test_with_the_tracking_observer_the_limits_follow_it(layer: str, fraction: float) -> None:
+    p = KnobParams(**LINEAR, estimator="tracking")
+    dyn, period = p.dynamics, p.period
+    assert dyn.observer_bandwidth == 1000.0
+    limit = servo.damping_limit(dyn, period) if layer == "b" else servo.mass_limits(dyn, period)[1]
+    knob = KnobPhysics(p)
+    knob.start(Hand("free"))
+    n = 4000
+    d = np.zeros(n)
+    d[:5] = 1e-3
+    zero = np.zeros(n)
+    value = np.full(n, fraction * limit)
+    tel = knob.run_block(
+        CoefficientBlock(d, zero, value if layer == "b" else zero, value if layer == "m" else zero)
+    )
+    early, late = np.abs(tel.torque[10:1000]).max(), np.abs(tel.torque[-800:]).max()
+    if fraction < 1:
+        assert late < 0.5 * early
+    else:
+        assert late > 1.2 * early or late > 0.9 * p.max_torque

@@ -1,8 +1,9 @@
 """Simulated knob: how its velocity and acceleration estimates follow the motion, and their noise.
 
 Gain and phase of the firmware's estimates against the true derivatives over frequency (ideal
-sensor, steady state, from the filter chain), and the torque noise a virtual mass makes from the
-quantised encoder while a hand turns the knob at a constant speed.
+sensor, steady state): the filter chain and the tracking observer (device/sim/observer.py); and
+the torque noise a virtual mass makes from the quantised encoder while a hand turns the knob at
+a constant speed, with each estimator (the observer at its default 1 kHz).
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from device.sim import KnobParams, KnobPhysics
+from device.sim import KnobParams, KnobPhysics, observer
 from device.sim.estimator import acceleration_response, velocity_response
 from timeline.bench.report import Table, figure, save
 from timeline.devices import CoefficientBlock, Hand
@@ -21,11 +22,12 @@ SUMMARY = "simulated knob: velocity/acceleration estimate gain and phase, mass t
 FREQUENCIES = (10.0, 50.0, 100.0, 175.0, 300.0, 500.0)
 MASS = 1e-5  # kg*m^2: one full scale of the mass track
 SPEEDS = (37.0, 90.0)  # deg/s: 3.7 and exactly 9 encoder counts per period
+BANDWIDTHS = (300.0, 1000.0)  # Hz: the tracking observer's poles
 
 
-def mass_noise(speed: float, seconds: float) -> float:
+def mass_noise(speed: float, seconds: float, estimator: str = "filter") -> float:
     """RMS torque (N*m) of a constant virtual mass while a hand turns the knob steadily."""
-    knob = KnobPhysics(KnobParams())
+    knob = KnobPhysics(KnobParams(estimator=estimator))
     knob.start(Hand("turn", speed))
     n = int(seconds * knob.params.rate)
     zero = np.zeros(n)
@@ -37,28 +39,28 @@ def mass_noise(speed: float, seconds: float) -> float:
 def run(quick: bool, out: Path) -> list[Table]:
     p = KnobParams()
     vel, acc = velocity_response(p, FREQUENCIES), acceleration_response(p, FREQUENCIES)
+    tracked = [observer.acceleration_response(p.period, b, FREQUENCIES) for b in BANDWIDTHS]
     response = Table(
-        "Estimate against the true derivative (ideal sensor, steady state, 10 kHz, filters "
-        f"{p.velocity_cutoff:g} Hz / {p.acceleration_cutoff:g} Hz)",
-        [
-            "frequency [Hz]",
-            "velocity gain",
-            "velocity phase [deg]",
-            "acceleration gain",
-            "acceleration phase [deg]",
-        ],  # fmt: skip
-    )
-    for f, v, a in zip(FREQUENCIES, vel, acc, strict=True):
-        response.rows.append([f, abs(v), float(np.degrees(np.angle(v))), abs(a),
-                              float(np.degrees(np.angle(a)))])  # fmt: skip
+        "Estimate against the true derivative (ideal sensor, steady state, 10 kHz): filters "
+        f"{p.velocity_cutoff:g} Hz / {p.acceleration_cutoff:g} Hz, and the tracking observer",
+        ["frequency [Hz]", "velocity gain", "velocity phase [deg]", "acceleration gain",
+         "acceleration phase [deg]"]
+        + [f"tracking {b:g} Hz: acceleration gain / phase [deg]" for b in BANDWIDTHS],
+    )  # fmt: skip
+    for i, (f, v, a) in enumerate(zip(FREQUENCIES, vel, acc, strict=True)):
+        row = [f, abs(v), float(np.degrees(np.angle(v))), abs(a), float(np.degrees(np.angle(a)))]
+        row += [f"{abs(h[i]):.3f} / {np.degrees(np.angle(h[i])):.1f}" for h in tracked]
+        response.rows.append(row)
     noise = Table(
         f"Torque noise of a {MASS:g} kg*m^2 virtual mass, hand turning steadily (0.001 deg "
-        "encoder, default filters)",
-        ["speed [deg/s]", "counts per period", "torque noise [mNm rms]"],
+        "encoder; filters as above, tracking observer at 1000 Hz)",
+        ["estimator", "speed [deg/s]", "counts per period", "torque noise [mNm rms]"],
     )
-    for speed in SPEEDS:
-        counts = np.radians(speed) / p.rate / p.quantum
-        noise.rows.append([speed, float(counts), 1e3 * mass_noise(speed, 1.0 if quick else 2.0)])
+    for estimator in ("filter", "tracking"):
+        for speed in SPEEDS:
+            counts = np.radians(speed) / p.rate / p.quantum
+            rms = mass_noise(speed, 1.0 if quick else 2.0, estimator)
+            noise.rows.append([estimator, speed, float(counts), 1e3 * rms])
     noise.notes.append("a whole number of counts per period repeats exactly: no noise")
     f = np.geomspace(1.0, 2000.0, 200)
     fig, (ax_gain, ax_phase) = figure(7.0, 5.0, ncols=2)
