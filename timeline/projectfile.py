@@ -200,11 +200,18 @@ def save(project: Project, path: str | os.PathLike) -> None:
 # --- reading -----------------------------------------------------------------------------------
 
 
+_MISSING = object()
+
+
 class _Bad(Exception):
     """Internal: the content is malformed; the message says where."""
 
 
 def _get(obj: Any, key: str, kind: type | tuple[type, ...], where: str) -> Any:
+    if type(obj) is dict:  # the common case first: a value of exactly the wanted type
+        value = obj.get(key, _MISSING)
+        if type(value) is kind:
+            return value
     if not isinstance(obj, dict):
         raise _Bad(f"{where} is not an object")
     if key not in obj:

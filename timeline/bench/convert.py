@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +17,7 @@ import numpy as np
 from timeline.analysis import DEFAULTS, SoundAnalysis
 from timeline.analysis.agreement import Agreement, agreement, on_grid
 from timeline.analysis.source import analyse_file
-from timeline.bench.report import Table, best_time, figure, save
+from timeline.bench.report import Table, best_cpu_time, best_time, figure, save
 
 NAME = "convert"
 SUMMARY = "audio-to-haptic analysis: agreement with Lofelt Studio's (corpus pairs) and speed"
@@ -116,24 +115,14 @@ def speed_table(quick: bool) -> Table:
         analyse_file(path)  # compiled loops loaded before timing
         read = best_time(lambda: sf.read(path, dtype="float32"), repeat)
         convert = best_time(lambda: analyse_file(path), repeat)
-        read_cpu = _best_cpu(lambda: sf.read(path, dtype="float32"), repeat)
-        convert_cpu = _best_cpu(lambda: analyse_file(path), repeat)
+        read_cpu = best_cpu_time(lambda: sf.read(path, dtype="float32"), repeat)
+        convert_cpu = best_cpu_time(lambda: analyse_file(path), repeat)
     table.rows.append(["soundfile.read (float32)", 1e3 * read, 1.0, 1e3 * read_cpu])
     table.rows.append(["analyse_file (defaults)", 1e3 * convert, convert / read, 1e3 * convert_cpu])
     table.notes.append("target: conversion at most 100 ms")
     table.notes.append("CPU: this process's CPU time, which other programs on the machine do not "
                        "inflate as they do the wall time")  # fmt: skip
     return table
-
-
-def _best_cpu(fn, repeat: int) -> float:
-    """Smallest CPU time (all this process's threads) of `repeat` calls, in seconds."""
-    best = float("inf")
-    for _ in range(repeat):
-        start = time.process_time()
-        fn()
-        best = min(best, time.process_time() - start)
-    return best
 
 
 def run(quick: bool, out: Path) -> list[Table]:
