@@ -125,7 +125,7 @@ def slew(design: Sampled, info: DeviceInfo) -> list[Finding]:
     d = design.terms.get("d")
     if info.slew is None or d is None or design.axis != "time" or d.size < 2:
         return []
-    rate = np.abs(np.diff(d, prepend=d[0])) * design.rate
+    rate = np.abs(np.diff(d, prepend=0.0)) * design.rate  # the device starts from rest
     limit = np.full(d.size, info.slew)
     return _over(
         design, "slew-limit", "d", rate - limit, rate, limit, "per s",
