@@ -32,6 +32,20 @@ def write_atomically(path: str | os.PathLike, write: Callable[[Path], None]) -> 
         _fsync(folder, os.O_RDONLY)
 
 
+def check_target(path: str | os.PathLike) -> None:
+    """Raise one sentence if a file cannot be written at `path` (checked before slow work)."""
+    from timeline.errors import HapticTimelineError
+
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    if path.is_dir():
+        raise HapticTimelineError(f"cannot write {path}: it is a folder")
+    if not folder.is_dir():
+        raise HapticTimelineError(f"cannot write {path}: the folder {folder} does not exist")
+    if not os.access(folder, os.W_OK):
+        raise HapticTimelineError(f"cannot write {path}: the folder {folder} is not writable")
+
+
 def _fsync(path: Path, flags: int) -> None:
     fd = os.open(path, flags)
     try:

@@ -6,12 +6,13 @@ to the project: a failure raises one HapticTimelineError and leaves no partial c
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any
 
 from timeline import edits
-from timeline.errors import HapticTimelineError
+from timeline.errors import EditError, HapticTimelineError
 from timeline.formats import (
     FormatError,
     Imported,
@@ -96,6 +97,10 @@ def place(
     With `track_id`, placements that name no kind or track of their own (a recording, a table)
     go on that track, and its kind gives them meaning.
     """
+    if not math.isfinite(at) or (project.axis == "time" and at < 0):
+        raise EditError(
+            f"an import cannot start at {at:g} {project.unit}: the timeline starts at 0"
+        )
     if track_id is not None:
         kind = project.track(track_id).kind
     infos = {t.key: t for t in imported.tracks}
