@@ -23,28 +23,15 @@ from timeline.formats import FormatError, Imported, Placement
 from timeline.kinds import track_kind
 from timeline.model import DEFAULT_TIME_RATE, Clip, Fade, Project, Track
 from timeline.tiles import GeneratorTile, SampledTile, generator
+from timeline.vibration_analysis import clip_points, envelope_breakpoints, trim_silence
+from timeline.vibration_design import carrier_hz as frequency
+from timeline.vibration_design import normalised_frequency as sharpness
 
-F_MIN = 80.0  # Hz at sharpness 0
-F_MAX = 230.0  # Hz at sharpness 1
 TRANSIENT_CYCLES = 2  # a transient is two carrier cycles, fading out over the second
 TRANSIENT_MAX = 0.05  # s: sine-generator clips up to this long export as transients
 MAX_DURATION = 600.0  # s: longer designs are refused as hostile or broken
 MAX_JSON_BYTES = 64 * 2**20
-AMPLITUDE_TOLERANCE = 0.01  # envelope breakpoints reproduce the analysed envelope to this
-SHARPNESS_TOLERANCE = 0.02
-GRID = 0.001  # s between analysed envelope samples before simplification
-ANALYSIS_WINDOW = 0.01  # s: carrier frequency window (about one period at F_MIN)
 DRIVE = "drive"
-
-
-def frequency(sharpness: np.ndarray | float) -> np.ndarray | float:
-    """The carrier frequency (Hz) for a sharpness or normalised frequency in 0..1."""
-    return F_MIN + np.clip(sharpness, 0.0, 1.0) * (F_MAX - F_MIN)
-
-
-def sharpness(hz: np.ndarray | float) -> np.ndarray | float:
-    """The sharpness (0..1) for a carrier frequency, clipped to the mapped range."""
-    return np.clip((np.asarray(hz, dtype=np.float64) - F_MIN) / (F_MAX - F_MIN), 0.0, 1.0)
 
 
 def load_json(path: Path, what: str) -> Any:
@@ -170,85 +157,6 @@ def analyse(project: Project, rate: float | None = None) -> Analysis:
         sharp = clip_points(sharp, amp[0][0], amp[-1][0])
     transients.sort(key=lambda t: t.time)
     return Analysis(amp, sharp, transients, duration)
-
-
-def _window_sum(values: np.ndarray, width: int) -> np.ndarray:
-    return np.convolve(values, np.ones(width), "same")
-
-
-def envelope_breakpoints(
-    x: np.ndarray, rate: float
-) -> tuple[list[tuple[float, float]], list[tuple[float, float]]]:
-    """Amplitude and sharpness breakpoints of a waveform (fraction of full scale)."""
-    padded = np.concatenate([[0.0], x, [0.0]])
-    neighbours = padded[2:] + padded[:-2]
-    width = max(3, int(round(ANALYSIS_WINDOW * rate)))
-    energy = _window_sum(2.0 * x * x, width)
-    cos_w = np.clip(_window_sum(x * neighbours, width) / np.maximum(energy, 1e-300), -1.0, 1.0)
-    omega = np.arccos(cos_w)  # radians per sample of the local carrier
-    # Where the signal is too weak to carry a frequency, take it from the nearest strong parts.
-    reliable = energy / width > (AMPLITUDE_TOLERANCE / 2) ** 2
-    index = np.arange(len(x))
-    if reliable.any():
-        omega = np.interp(index, index[reliable], omega[reliable])
-    else:
-        omega = np.full(len(x), 2.0 * np.pi * frequency(0.5) / rate)
-    omega = np.clip(omega, np.pi * F_MIN / rate, min(4.0 * np.pi * F_MAX / rate, 0.9 * np.pi))
-    quadrature = (padded[2:] - padded[:-2]) / (2.0 * np.maximum(np.sin(omega), 1e-6))
-    envelope = np.sqrt(x * x + quadrature * quadrature)
-    step = max(1, int(round(GRID * rate)))
-    centres = np.arange(0, len(x), step)
-    if centres[-1] != len(x) - 1:
-        centres = np.append(centres, len(x) - 1)
-    half = step // 2
-    amp = np.array([np.median(envelope[max(0, c - half) : c + half + 1]) for c in centres])
-    hz = omega[centres] * rate / (2.0 * np.pi)
-    times = centres / rate
-    return (
-        simplify(times, np.clip(amp, 0.0, 1.0), AMPLITUDE_TOLERANCE),
-        simplify(times, sharpness(hz), SHARPNESS_TOLERANCE),
-    )
-
-
-def simplify(t: np.ndarray, v: np.ndarray, tolerance: float) -> list[tuple[float, float]]:
-    """Fewest breakpoints whose straight segments stay within tolerance of v (Douglas-Peucker)."""
-    keep = np.zeros(len(t), dtype=bool)
-    keep[[0, -1]] = True
-    stack = [(0, len(t) - 1)]
-    while stack:
-        i, j = stack.pop()
-        if j - i < 2:
-            continue
-        inner = np.arange(i + 1, j)
-        line = v[i] + (v[j] - v[i]) * (t[inner] - t[i]) / (t[j] - t[i])
-        errors = np.abs(v[inner] - line)
-        worst = int(np.argmax(errors))
-        if errors[worst] > tolerance:
-            k = int(inner[worst])
-            keep[k] = True
-            stack += [(i, k), (k, j)]
-    return [(float(t[k]), round(float(v[k]), 6)) for k in np.flatnonzero(keep)]
-
-
-def trim_silence(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
-    """Drop leading and trailing breakpoints of a silent stretch, keeping the edge of the sound."""
-    lo, hi = 0, len(points)
-    while lo + 1 < hi and points[lo][1] == 0.0 and points[lo + 1][1] == 0.0:
-        lo += 1
-    while hi - 1 > lo + 1 and points[hi - 1][1] == 0.0 and points[hi - 2][1] == 0.0:
-        hi -= 1
-    return points[lo:hi]
-
-
-def clip_points(
-    points: list[tuple[float, float]], lo: float, hi: float
-) -> list[tuple[float, float]]:
-    """The breakpoints within [lo, hi], with values interpolated at lo and hi."""
-    t = np.array([p[0] for p in points])
-    v = np.array([p[1] for p in points])
-    inner = [p for p in points if lo < p[0] < hi]
-    ends = [(lo, float(np.interp(lo, t, v))), (hi, float(np.interp(hi, t, v)))]
-    return [ends[0], *inner, ends[1]] if hi > lo else ends[:1]
 
 
 def write_json(doc: Any, path: Path) -> None:

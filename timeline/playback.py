@@ -36,7 +36,7 @@ class Playback:
     layer_names: dict[str, str]
 
 
-def _terms(layers: dict[str, np.ndarray]) -> tuple[dict[str, np.ndarray], dict[str, str]]:
+def layer_terms(layers: dict[str, np.ndarray]) -> tuple[dict[str, np.ndarray], dict[str, str]]:
     """Sum rendered layers by the torque-law term their kind feeds (d, k, b or m)."""
     sums: dict[str, np.ndarray] = {}
     names: dict[str, str] = {}
@@ -64,7 +64,7 @@ def coefficient_blocks(
     duration = project.duration if duration is None else float(duration)
     if not math.isfinite(duration) or duration <= 0:
         raise DeviceError(f"nothing to play: the duration is {duration:g} s")
-    sums, names = _terms(render(project, 0.0, duration, rate, quality))
+    sums, names = layer_terms(render(project, 0.0, duration, rate, quality))
     n = int(round(duration * rate))
     zero = np.zeros(n)
     d, k, b = (sums.get(t, zero) for t in "dkb")
@@ -84,7 +84,7 @@ def position_table(
         raise DeviceError("nothing to play: the project has no clips")
     start = min(0.0, min(c.start for c in clips))
     stop = project.duration
-    sums, names = _terms(render(project, start, stop, project.rate, quality))
+    sums, names = layer_terms(render(project, start, stop, project.rate, quality))
     n = int(round((stop - start) * project.rate))
     torque = sums.get("d", np.zeros(n))
     table = PositionTable(start, project.rate, torque, sums.get("b"), sums.get("m"))

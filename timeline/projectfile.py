@@ -24,13 +24,21 @@ from timeline.errors import EditError, HapticTimelineError, ProjectFileError
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.project_fields import FieldError
 from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
+from timeline.vibration_design import Emphasis, VibrationDesign
+from timeline.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
-SCHEMA = 1
+SCHEMA = 2
 MAX_FILE_BYTES = 4 * 2**30
 
+
+def _schema_1_to_2(doc: dict) -> dict:
+    """Schema 2 added the "vibration" tile type; a schema 1 file has none, so nothing changes."""
+    return {**doc, "schema": 2}
+
+
 # Upgrade functions keyed by the schema version they read; each returns the next version's dict.
-MIGRATIONS: dict[int, Callable[[dict], dict]] = {}
+MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2}
 
 
 # --- writing -----------------------------------------------------------------------------------
@@ -63,6 +71,18 @@ def _tile_to_json(tile: Tile, media: dict[str, Any]) -> dict[str, Any]:
             "duration": tile.duration,
             "method": tile.method,
             "points": [list(p) for p in tile.points],
+        }
+    if isinstance(tile, VibrationTile):
+        design = tile.design
+        return {
+            "type": "vibration",
+            "name": tile.name,
+            "source": tile.source,
+            "sharpness": tile.sharpness,
+            "duration": design.duration,
+            "amplitude": [list(p) for p in design.amplitude],
+            "frequency": [list(p) for p in design.frequency],
+            "emphasis": [[e.time, e.amplitude, e.frequency] for e in design.emphasis],
         }
     return {
         "type": "generator",
@@ -214,7 +234,29 @@ def _tile(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
             tuple((k, fields.as_number(v, f"{where}.params.{k}")) for k, v in params.items()),
             name,
         )
+    if kind == "vibration":
+        return _vibration_from_json(obj, name, where)
     raise FieldError(f"{where} has unknown tile type {kind!r}")
+
+
+def _number_rows(obj: Any, key: str, width: int, where: str) -> list[tuple[float, ...]]:
+    rows = fields.get(obj, key, list, where)
+    if not all(isinstance(r, list) and len(r) == width for r in rows):
+        raise FieldError(f"{where}.{key} should be lists of {width} numbers")
+    return [
+        tuple(fields.as_number(x, f"{where}.{key}[{i}]") for x in r) for i, r in enumerate(rows)
+    ]
+
+
+def _vibration_from_json(obj: Any, name: str, where: str) -> VibrationTile:
+    design = VibrationDesign(
+        tuple(_number_rows(obj, "amplitude", 2, where)),  # type: ignore[arg-type]
+        tuple(_number_rows(obj, "frequency", 2, where)),  # type: ignore[arg-type]
+        tuple(Emphasis(*e) for e in _number_rows(obj, "emphasis", 3, where)),
+        fields.number(obj, "duration", where, positive=True),
+    )
+    source = fields.text(obj, "source", where, "")
+    return VibrationTile(design, name, source, fields.get(obj, "sharpness", str, where))
 
 
 def _built(make: Callable[[], Any], where: str) -> Any:

@@ -18,6 +18,7 @@ from timeline.errors import EditError
 from timeline.generators import GENERATORS
 from timeline.quality import QualityPreset
 from timeline.resample import sample_grid
+from timeline.vibration_tile import VibrationTile
 
 MAX_TILE_SAMPLES = 2**31  # ~16 GiB of float64; anything larger is refused as a hostile size
 
@@ -210,7 +211,7 @@ class GeneratorTile:
         return GeneratorTile(self.generator, self.duration, self.params, name)
 
 
-Tile = SampledTile | SplineTile | GeneratorTile
+Tile = SampledTile | SplineTile | GeneratorTile | VibrationTile
 
 
 def generator(name: str, duration: float, title: str = "", **params: Any) -> GeneratorTile:

@@ -142,17 +142,18 @@ def test_deeply_nested_json(tmp_path):
 
 def test_a_registered_migration_upgrades_an_old_file(tmp_path, monkeypatch):
     doc = _saved_doc(tmp_path)
-    # Pretend the current schema is 2 and version 1 stored track gains in decibels.
+    # Pretend the next schema stores track gains as numbers and the current one in decibels.
+    current = projectfile.SCHEMA
     for track in doc["project"]["tracks"]:
         track["gain_db"] = 20 * np.log10(track.pop("gain"))
 
     def upgrade(old):
         for track in old["project"]["tracks"]:
             track["gain"] = 10 ** (track.pop("gain_db") / 20)
-        return {**old, "schema": 2}
+        return {**old, "schema": current + 1}
 
-    monkeypatch.setattr(projectfile, "SCHEMA", 2)
-    monkeypatch.setitem(projectfile.MIGRATIONS, 1, upgrade)
+    monkeypatch.setattr(projectfile, "SCHEMA", current + 1)
+    monkeypatch.setitem(projectfile.MIGRATIONS, current, upgrade)
     (tmp_path / "old.htl").write_text(json.dumps(doc))
     p = projectfile.load(tmp_path / "old.htl")
     assert p.tracks[1].gain == pytest.approx(0.3)

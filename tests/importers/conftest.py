@@ -6,7 +6,16 @@ from pathlib import Path
 
 import pytest
 
-CORPUS = Path(__file__).resolve().parents[3] / "shared" / "corpus"
+
+def _find_corpus() -> Path:
+    """../shared/corpus beside the repository (or beside the folder of git worktrees)."""
+    for folder in Path(__file__).resolve().parents[2:]:
+        if (folder / "shared" / "corpus").is_dir():
+            return folder / "shared" / "corpus"
+    return Path(__file__).resolve().parents[3] / "shared" / "corpus"
+
+
+CORPUS = _find_corpus()
 
 
 @pytest.fixture

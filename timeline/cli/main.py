@@ -21,6 +21,8 @@ VERB_MODULES = [
     "timeline.cli.import_cmd",
     "timeline.cli.export_cmd",
     "timeline.cli.bench_cmd",
+    "timeline.cli.check_cmd",
+    "timeline.cli.compare_cmd",
 ]
 
 

@@ -1,0 +1,196 @@
+"""Vibration designs on the timeline: exact read-back, the synthesised carrier, edits, the file."""
+
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from timeline import edits, mixer, projectfile
+from timeline.errors import EditError, ProjectFileError
+from timeline.kinds import track_kind
+from timeline.tiles import generator
+from timeline.vibration import (
+    EDIT_TOLERANCE,
+    Emphasis,
+    VibrationDesign,
+    VibrationTile,
+    design_of,
+    place_design,
+)
+from timeline.vibration_design import F_MAX, F_MIN, carrier_hz
+
+RATE = 10_000.0
+DESIGN = VibrationDesign(
+    amplitude=((0.0, 0.0), (0.2, 1.0), (0.2, 0.4), (0.6, 0.4), (1.0, 0.0)),  # a step at 0.2 s
+    frequency=((0.0, 0.1), (1.0, 0.9)),
+    emphasis=(Emphasis(0.5, 1.0, 0.7), Emphasis(0.5, 0.6, 0.2)),  # two at one time
+    duration=1.0,
+)
+
+
+def _project(design=DESIGN, **kwargs):
+    return place_design(edits.new_project(templates=False), design, **kwargs)
+
+
+def _drive(project, start=0.0, stop=None):
+    stop = project.duration if stop is None else stop
+    layer = mixer.render(project, start, stop, RATE, "normal")["drive"]
+    return layer / track_kind("drive").full_scale
+
+
+def test_an_unedited_design_reads_back_exactly_wherever_it_is_placed():
+    assert design_of(_project()) == DESIGN
+    later = design_of(_project(at=1.5))
+    assert later.amplitude == tuple((t + 1.5, v) for t, v in DESIGN.amplitude)
+    assert [(e.time, e.amplitude) for e in later.emphasis] == [(2.0, 1.0), (2.0, 0.6)]
+    assert later.duration == 2.5
+
+
+def test_the_carrier_phase_is_the_exact_integral_of_the_frequency_envelope():
+    # 80 + 150 * (0.1 + 0.8 t) Hz integrates to 155 cycles over the first second
+    assert DESIGN.cycles(np.array([1.0]))[0] == pytest.approx(155.0, abs=1e-9)
+    t = np.linspace(0.0, 1.0, 200_001)
+    numeric = np.concatenate(
+        [[0.0], np.cumsum(np.diff(t) * carrier_hz(0.1 + 0.4 * (t[1:] + t[:-1])))]
+    )
+    assert np.max(np.abs(DESIGN.cycles(t) - numeric)) < 1e-9
+
+
+def test_rendered_values_are_the_envelope_times_the_carrier_at_any_rate():
+    p = _project()
+    x = _drive(p)
+    u = np.arange(len(x)) / RATE
+    outside_emphasis = (u < 0.5) | (u >= 0.5 + 2 / carrier_hz(0.2))
+    expected = DESIGN.amplitude_at(u) * np.sin(2 * np.pi * DESIGN.cycles(u))
+    assert np.max(np.abs(x - expected)[outside_emphasis]) < 1e-9
+    # peak level follows the envelope: 0.4 between 0.25 s and 0.45 s
+    assert np.max(np.abs(x[2500:4500])) == pytest.approx(0.4, abs=2e-3)
+    # a different rate samples the same curve: shared instants agree
+    y = mixer.render(p, 0.0, p.duration, 3 * RATE, "normal")["drive"] / 0.18
+    assert np.max(np.abs(y[::3][: len(x)] - x)) < 1e-9
+
+
+def test_an_emphasis_ducks_the_carrier_and_rings_for_two_cycles():
+    design = VibrationDesign(
+        ((0.0, 0.3), (0.1, 0.3)), ((0.0, 0.5),), (Emphasis(0.05, 0.9, 1.0),), 0.1
+    )
+    x = _drive(_project(design))
+    pulse = x[500 : 500 + int(2 / F_MAX * RATE)]
+    assert np.max(np.abs(pulse)) == pytest.approx(0.9, abs=0.01)  # not 0.3 + 0.9
+    assert np.max(np.abs(x[:490])) == pytest.approx(0.3, abs=0.01)
+
+
+def test_gain_trim_and_stretch_are_applied_to_the_breakpoints_exactly():
+    p = _project()
+    clip = p.tracks[0].clips[0].id
+    half = design_of(edits.set_clip_gain(p, clip, 0.5))
+    assert [v for _, v in half.amplitude] == [v * 0.5 for _, v in DESIGN.amplitude]
+    assert [e.amplitude for e in half.emphasis] == [0.5, 0.3]
+    trimmed = design_of(edits.trim_clip(p, clip, 0.1, 0.8))
+    assert trimmed.amplitude[0] == (0.1, 0.5) and trimmed.amplitude[-1] == pytest.approx((0.8, 0.2))
+    slow = design_of(edits.stretch_clip(p, clip, 1.1))
+    assert slow.amplitude[1] == pytest.approx((0.22, 1.0))
+    # the carrier is resampled too: 80 + 150 * 0.9 = 215 Hz becomes 195.5 Hz
+    assert slow.frequency[-1][1] == pytest.approx((215 / 1.1 - F_MIN) / (F_MAX - F_MIN))
+    # slower still, 95 Hz would fall below the carrier range: the layer is analysed instead
+    slower = design_of(edits.stretch_clip(p, clip, 1.5))
+    assert slower.frequency[0][1] == 0.0 and len(slower.amplitude) > len(DESIGN.amplitude)
+
+
+def test_a_fade_is_reduced_to_breakpoints_within_the_stated_bound():
+    ramp = VibrationDesign(((0.0, 1.0), (1.0, 1.0)), ((0.0, 0.5),), (), 1.0)
+    p = _project(ramp)
+    clip = p.tracks[0].clips[0].id
+    faded = design_of(edits.set_fade(p, clip, "out", 0.5, "equal-power"))
+    t = np.linspace(0.0, 1.0, 10_001)
+    exact = np.where(t < 0.5, 1.0, np.sin(0.5 * np.pi * np.clip((1.0 - t) / 0.5, 0, 1)))
+    assert np.max(np.abs(faded.amplitude_at(t) - exact)) <= EDIT_TOLERANCE + 1e-12
+    assert len(faded.amplitude) < 40
+
+
+def test_other_clips_are_analysed_and_short_sines_read_as_emphasis():
+    p = _project(VibrationDesign(((0.0, 0.5), (0.3, 0.5)), ((0.0, 0.5),), (), 0.3))
+    track = p.tracks[0].id
+    p, tile = edits.add_tile(p, generator("sine", 0.02, frequency=230.0))
+    p, _ = edits.add_clip(p, track, tile, 0.5, gain=0.8)
+    read = design_of(p)
+    assert read.amplitude == ((0.0, 0.5), (0.3, 0.5))
+    assert read.emphasis == (Emphasis(0.5, 0.8, 1.0),)
+    # an overlapping sine makes the layer a mixture: analysed, not exact
+    p, tone = edits.add_tile(p, generator("sine", 0.3, frequency=155.0, amplitude=0.2))
+    p, _ = edits.add_clip(p, track, tone, 0.0)
+    mixed = design_of(p)
+    assert mixed.amplitude != read.amplitude and len(mixed.amplitude) >= 2
+
+
+def test_a_silent_design_keeps_its_frequency_envelope():
+    silent = VibrationDesign(((0.0, 0.0), (2.0, 0.0)), ((0.0, 0.2), (2.0, 0.8)), (), 2.0)
+    assert design_of(_project(silent)) == silent
+    assert not np.any(_drive(_project(silent)))
+
+
+@pytest.mark.parametrize(
+    ("amplitude", "frequency", "message"),
+    [
+        (((0.0, 1.5),), (), "between 0 and 1"),
+        (((0.5, 0.1), (0.2, 0.1)), (), "goes back in time"),
+        (((0.0, float("nan")),), (), "between 0 and 1"),
+        (((0.0, 0.1), (3.0, 0.1)), (), "has a breakpoint at 3 s"),
+    ],
+)
+def test_bad_designs_are_refused_in_one_sentence(amplitude, frequency, message):
+    with pytest.raises(EditError, match=message):
+        VibrationDesign(amplitude, frequency, (), 1.0)
+
+
+def test_a_design_goes_on_a_drive_track_only():
+    p, track = edits.add_track(edits.new_project(templates=False), "stiffness")
+    with pytest.raises(EditError, match="drive track"):
+        place_design(p, DESIGN, track_id=track)
+
+
+def test_the_project_file_keeps_the_design_and_refuses_a_damaged_one(tmp_path):
+    path = tmp_path / "v.htl"
+    projectfile.save(_project(at=0.25), path)
+    assert design_of(projectfile.load(path)) == DESIGN.shifted(0.25)
+    doc = json.loads(path.read_text())
+    tile = next(t for t in doc["project"]["tiles"].values() if t["type"] == "vibration")
+    assert tile["emphasis"] == [[0.5, 1.0, 0.7], [0.5, 0.6, 0.2]]
+    tile["amplitude"][1] = [0.2, 7.0]
+    path.write_text(json.dumps(doc))
+    with pytest.raises(ProjectFileError, match="between 0 and 1"):
+        projectfile.load(path)
+
+
+def test_a_schema_1_file_still_loads(tmp_path):
+    path = tmp_path / "old.htl"
+    projectfile.save(edits.new_project(), path)
+    doc = json.loads(path.read_text())
+    doc["schema"] = 1
+    path.write_text(json.dumps(doc))
+    assert projectfile.load(path) == edits.new_project()
+
+
+unit = st.floats(0.0, 1.0)
+times = st.lists(st.floats(0.0, 5.0), min_size=0, max_size=12).map(sorted)
+
+
+@st.composite
+def designs(draw):
+    amp = [(t, draw(unit)) for t in draw(times)]
+    freq = [(t, draw(unit)) for t in draw(times)]
+    accents = [Emphasis(t, draw(unit), draw(unit)) for t in draw(times)]
+    return VibrationDesign(tuple(amp), tuple(freq), tuple(accents), 5.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(designs(), st.floats(0.0, 3.0))
+def test_any_design_survives_placing_saving_and_loading(design, at):
+    p = _project(design, at=at)
+    q = projectfile.from_json(json.loads(projectfile.dumps(p)))
+    assert design_of(q) == design_of(p)
+    if at == 0.0:
+        assert design_of(q) == design
+    assert isinstance(next(iter(q.tiles.values())), VibrationTile)

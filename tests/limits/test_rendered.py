@@ -1,0 +1,42 @@
+"""Rendered against designed: the clamp, the actuator and the knob's estimators, in numbers."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from tests.limits.designs import KNOB, layered, tone
+from timeline.devices import Hand
+from timeline.limits.actuators import actuator
+from timeline.limits.design import sample
+from timeline.limits.rendered import knob, vibration
+
+
+def test_the_clamp_cuts_a_drive_above_full_scale() -> None:
+    shaker = replace(KNOB, kind="vibrotactile", max_output=1.0, dynamics=None)
+    trace = vibration(sample(tone(175.0, 1.3), 1e4), shaker, None)
+    assert np.abs(trace.designed).max() == pytest.approx(1.3, rel=1e-3)
+    assert np.abs(trace.rendered).max() == 1.0
+    assert trace.worst_gap() == pytest.approx(0.3, rel=1e-3)
+
+
+def test_an_lra_renders_its_resonance_and_drops_a_low_tone() -> None:
+    lra = actuator("lra-175")
+    at = vibration(sample(tone(175.0, 0.1, 0.5), 1e4), KNOB, lra).rendered[-1000:]
+    low = vibration(sample(tone(90.0, 0.1, 0.5), 1e4), KNOB, lra).rendered[-1000:]
+    assert np.abs(at).max() == pytest.approx(0.1, rel=0.02)
+    assert np.abs(low).max() == pytest.approx(0.1 * lra.gain(90.0), rel=0.1)
+
+
+def test_a_saturating_drive_shows_on_the_knob() -> None:
+    trace = knob(layered("drive", 0.25, seconds=0.05), KNOB, Hand("hold"))
+    assert trace.worst_gap() == pytest.approx(0.07, rel=1e-6)  # 250 mNm asked, 180 applied
+    assert trace.time.size == 500
+
+
+def test_a_soft_spring_renders_as_drawn() -> None:
+    trace = knob(layered("stiffness", 0.2, seconds=0.5), KNOB, Hand("turn", 90.0))
+    assert np.abs(trace.designed).max() > 5e-3  # 0.2 N*m/rad over up to 45 deg
+    assert trace.worst_gap() < 0.05 * np.abs(trace.designed).max()

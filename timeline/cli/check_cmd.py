@@ -1,0 +1,92 @@
+"""`haptic-timeline check PROJECT`: the device and perception limits a design crosses.
+
+Exit status: 0 when nothing is found, 3 when there are findings, 1 on an error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from dataclasses import asdict
+from pathlib import Path
+
+from timeline.cli.play_cmd import parse_option
+from timeline.devices import DeviceInfo, Hand, open_device
+from timeline.limits import servo
+from timeline.limits.actuators import PROFILES, actuator
+from timeline.limits.check import Report, check
+from timeline.projectfile import load
+from timeline.quality import DEFAULT_QUALITY, PRESETS
+
+FOUND = 3
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("check", help="list the device and perception limits a design crosses")
+    p.add_argument("project", help="a .htl project file")
+    p.add_argument("--device", default="sim", help="device plugin whose limits apply (sim)")
+    p.add_argument("--device-option", action="append", default=[], metavar="KEY=VALUE",
+                   help="an option for the device plugin (repeatable)")  # fmt: skip
+    p.add_argument("--actuator", help=f"vibration actuator: {', '.join(PROFILES)}, lra:F0[:Q] "
+                   "or voice-coil:LOW-HIGH (default: the device's own)")  # fmt: skip
+    p.add_argument("--json", action="store_true", help="print the findings as JSON")
+    p.add_argument("--plot", help="write rendered against designed to this .png")
+    p.add_argument("--hand", default="hold", help="the hand for --plot on a knob (as in play)")
+    p.add_argument("--quality", default=DEFAULT_QUALITY, choices=list(PRESETS))
+    p.set_defaults(func=run)
+
+
+def device_limits(info: DeviceInfo) -> dict[str, float]:
+    """The limits a device's declarations imply (empty when it declares no dynamics)."""
+    dyn = info.dynamics
+    if dyn is None or info.kind != "kinesthetic":
+        return {}
+    low, high = servo.mass_limits(dyn, info.period)
+    return {
+        "passive_stiffness": float(servo.passive_stiffness(dyn.damping, 0.0, info.period,
+                                                           dyn.delay)),
+        "damping": servo.damping_limit(dyn, info.period),
+        "mass_low": low,
+        "mass_high": high,
+    }  # fmt: skip
+
+
+def as_json(path: str, info: DeviceInfo, report: Report) -> str:
+    device = asdict(info)
+    return json.dumps(
+        {
+            "project": path,
+            "device": device,
+            "limits": device_limits(info),
+            "findings": [f.as_dict() for f in report.findings],
+            "notes": list(report.notes),
+        },
+        indent=2,
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    project = load(args.project)
+    chosen = actuator(args.actuator) if args.actuator else None
+    options = dict(parse_option(text) for text in args.device_option)
+    with open_device(args.device, **options) as device:
+        info = device.info
+    report = check(project, info, chosen, args.quality)
+    if args.json:
+        print(as_json(args.project, info, report))
+    else:
+        name = Path(args.project).name
+        count = len(report.findings)
+        print(f"{name} on {info.name}: {count or 'no'} finding{'' if count == 1 else 's'}")
+        for finding in report.findings:
+            print(f"  {finding.describe()}")
+        for note in report.notes:
+            print(f"note: {note}", file=sys.stderr)
+    if args.plot:
+        from timeline.limits.plot import plot_rendered
+
+        hand = Hand.parse(args.hand)
+        plot_rendered(project, info, chosen or info.actuator, report, args.plot, hand, args.quality)
+        print(f"plot -> {args.plot}", file=sys.stderr)
+    return FOUND if report.findings else 0

@@ -1,0 +1,59 @@
+"""Check a project against a device's rendering limits and the hand's perception limits."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from timeline.devices import Actuator, DeviceInfo
+from timeline.limits import device_checks, perception_checks
+from timeline.limits.design import sample
+from timeline.limits.findings import Finding
+from timeline.model import Project
+
+
+@dataclass(frozen=True)
+class Report:
+    """Every finding in timeline order, and notes on checks that could not run (and why)."""
+
+    findings: tuple[Finding, ...]
+    notes: tuple[str, ...]
+
+    def kinds(self) -> set[str]:
+        return {f.kind for f in self.findings}
+
+
+def check(
+    project: Project,
+    info: DeviceInfo,
+    actuator: Actuator | None = None,
+    quality: str = "normal",
+) -> Report:
+    """All findings for a project played on a device (and, for vibration, an actuator).
+
+    `actuator` defaults to the one the device declares.
+    """
+    actuator = actuator or info.actuator
+    design = sample(project, info.rate, quality)
+    notes = []
+    if info.kind == "kinesthetic" and info.dynamics is None:
+        notes.append(f"{info.name} does not declare its inertia and damping: stability not checked")
+    vibration = "d" in design.terms and project.axis == "time" and info.kind == "vibrotactile"
+    if vibration and actuator is None:
+        notes.append("no actuator profile: band and detection not checked (use --actuator)")
+    if info.slew is None:
+        notes.append(f"{info.name} declares no slew limit")
+    if project.axis == "position":
+        notes.append("position project: gaps, detection and slew depend on the turning speed "
+                     "and are checked on time projects only")  # fmt: skip
+    findings = [
+        *device_checks.saturation(design, info),
+        *device_checks.stability(design, info),
+        *device_checks.slew(design, info),
+        *device_checks.actuator_band(design, info, actuator),
+        *perception_checks.below_detection(design, info, actuator),
+        *perception_checks.short_gaps(design, info),
+        *perception_checks.sub_jnd_clips(project, info, design.rate, quality),
+        *perception_checks.sub_jnd_variants(project, info, design.rate, quality),
+    ]
+    findings.sort(key=lambda f: (f.start, f.kind))
+    return Report(tuple(findings), tuple(notes))

@@ -1,0 +1,78 @@
+"""Rendered against designed: what the device will output next to what was drawn.
+
+* Vibration (a drive layer with an actuator, or a vibrotactile device): the drive clamped to the
+  device's maximum, then through the actuator's response.
+* A knob: the project played on the simulated knob built from the device's declarations (rate,
+  maximum torque, rotor, estimator filters) with a hand; "designed" is the torque law evaluated
+  on the motion that happened with exact (zero-phase) derivatives of the angle, "rendered" is
+  the torque the motor applied: the difference is the clamp and the estimators' lag and noise.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.signal import savgol_filter
+
+from timeline.devices import Actuator, DeviceInfo, Hand, open_device
+from timeline.errors import HapticTimelineError
+from timeline.limits.design import Sampled
+from timeline.limits.device_checks import actuator_output
+from timeline.model import Project
+from timeline.playback import prepare
+
+DERIVATIVE_WINDOW = 0.002  # s: the zero-phase fit the exact derivatives come from
+
+
+@dataclass(frozen=True, eq=False)
+class Trace:
+    """One designed signal and its rendering, over time."""
+
+    label: str
+    unit: str  # display unit
+    scale: float  # display value = SI value * scale
+    time: np.ndarray
+    designed: np.ndarray
+    rendered: np.ndarray
+
+    def worst_gap(self) -> float:
+        """Largest |rendered - designed| (SI)."""
+        return float(np.abs(self.rendered - self.designed).max(initial=0.0))
+
+
+def vibration(design: Sampled, info: DeviceInfo, actuator: Actuator | None) -> Trace | None:
+    """The drive after the device's clamp and the actuator's response."""
+    d = design.terms.get("d")
+    if d is None or design.axis != "time" or (actuator is None and info.kind != "vibrotactile"):
+        return None
+    clamped = np.clip(d, -info.max_output, info.max_output)
+    out = actuator_output(actuator, clamped, design.rate) if actuator else clamped
+    time = design.start + np.arange(d.size) / design.rate
+    unit, scale = ("mNm", 1e3) if info.kind == "kinesthetic" else ("% full scale", 100.0)
+    name = actuator.name if actuator else info.name
+    return Trace(f"drive on {name}", unit, scale, time, d, out)
+
+
+def knob(project: Project, info: DeviceInfo, hand: Hand, quality: str = "normal") -> Trace:
+    """The torque law against the torque applied, on a simulated knob with the device's numbers."""
+    options: dict[str, float] = {"rate": info.rate, "max_torque": info.max_output}
+    if info.dynamics is not None:
+        dyn = info.dynamics
+        options.update(inertia=dyn.inertia, viscous=dyn.damping,
+                       velocity_cutoff=dyn.velocity_cutoff,
+                       acceleration_cutoff=dyn.acceleration_cutoff)  # fmt: skip
+    with open_device("sim", **options) as sim:
+        playback = prepare(project, sim.info, None, hand, quality)
+        tel = sim.play(playback.program, hand)
+    if len(tel) < 8:
+        raise HapticTimelineError("the design is too short to plot as it renders")
+    window = min(len(tel) - (1 - len(tel) % 2), max(5, round(DERIVATIVE_WINDOW * tel.rate) | 1))
+    period = 1.0 / tel.rate
+    angle = tel.angle
+    velocity = savgol_filter(tel.angle, window, 3, deriv=1, delta=period)
+    acceleration = savgol_filter(tel.angle, window, 3, deriv=2, delta=period)
+    zero = np.zeros(len(tel))
+    layer = {k: tel.layers.get(k, zero) for k in "dkbm"}
+    designed = layer["d"] - layer["k"] * angle - layer["b"] * velocity - layer["m"] * acceleration
+    return Trace(f"torque on {info.name}, hand {hand}", "mNm", 1e3, tel.time, designed, tel.torque)

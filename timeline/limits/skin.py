@@ -1,0 +1,38 @@
+"""How far the skin moves for one unit of drive at a frequency: the bridge from a design's
+numbers to the detection threshold.
+
+* A vibrotactile actuator shakes the hand with its peak acceleration (g at full scale) times its
+  frequency response; displacement = acceleration / (2*pi*f)^2.
+* A knob turns against its rotor and the hand's grip: angle = torque / |K_h - (J + J_h)*w^2 +
+  j*w*(b + B_h)|, and the fingertip on its rim moves radius * angle. The grip is the default
+  hand's (timeline.devices.Hand) and the radius KNOB_RADIUS, a typical control knob.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from timeline.devices import Actuator, DeviceInfo, Hand
+
+KNOB_RADIUS = 0.015  # m: where the fingertips touch a 30 mm knob
+G = 9.81  # m/s^2
+
+
+def displacement_per_unit(
+    info: DeviceInfo, actuator: Actuator | None, frequency: np.ndarray, hand: Hand | None = None
+) -> np.ndarray | None:
+    """Peak skin displacement (m) per unit of drive (in the device's output unit); None if unknown.
+
+    An actuator's full scale is the device's maximum output.
+    """
+    f = np.maximum(np.asarray(frequency, dtype=np.float64), 1.0)
+    w = 2.0 * np.pi * f
+    if actuator is not None:
+        return actuator.peak_acceleration * G * actuator.gain(f) / (w * w) / info.max_output
+    if info.kind != "kinesthetic" or info.dynamics is None:
+        return None
+    hand = hand or Hand("hold")
+    dyn = info.dynamics
+    z = hand.grip_stiffness - (dyn.inertia + hand.inertia) * w * w
+    z = z + 1j * w * (dyn.damping + hand.grip_damping)
+    return KNOB_RADIUS / np.abs(z)

@@ -1,0 +1,302 @@
+"""Vibrotactile designs on the timeline: envelopes and emphasis kept as editable data.
+
+The shared interface for .haptic/AHAP import and export and for `convert`:
+
+* `VibrationDesign(amplitude, frequency, emphasis, duration)`: amplitude breakpoints
+  (seconds, 0..1 of full scale), frequency breakpoints (seconds, 0..1 normalised frequency as in
+  .haptic, carrier F_MIN..F_MAX Hz), `Emphasis(time, amplitude, frequency)` accents, length in
+  seconds (timeline.vibration_design).
+* `place_design(project, design, *, at=0.0, track_id=None, ...) -> Project`: the design as one
+  `VibrationTile` in the library and one clip on a drive track (the first one, created if there
+  is none, or `track_id`). The tile keeps the breakpoints; the carrier is synthesised only when
+  rendering, exactly at any rate.
+* `design_of(project, track_ids=None) -> VibrationDesign`: the sounding drive tracks read back as
+  a design, in timeline seconds. Exact (the same breakpoints) while the design's clips are
+  unedited; clip gain, track gain, trims and squeeze-stretch are applied to the breakpoints
+  exactly (a stretch that takes the carrier outside F_MIN..F_MAX is analysed instead, below);
+  fades multiply the amplitude envelope, reduced back to breakpoints within EDIT_TOLERANCE.
+  Short sine-generator clips (at most TRANSIENT_MAX s) are read as emphasis. Anything else on
+  the drive tracks (recordings, generators, overlapping, looped, reversed or offset clips) is
+  rendered and analysed into breakpoints within the tolerances of timeline.vibration_analysis.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from timeline import edits, mixer
+from timeline.errors import EditError
+from timeline.fades import fade_envelope
+from timeline.kinds import track_kind
+from timeline.model import DEFAULT_TIME_RATE, Clip, Project, Track
+from timeline.tiles import GeneratorTile
+from timeline.vibration_analysis import clip_points, envelope_breakpoints, simplify, trim_silence
+from timeline.vibration_design import (
+    DEFAULT_FREQUENCY,
+    F_MAX,
+    F_MIN,
+    Emphasis,
+    VibrationDesign,
+    carrier_hz,
+    normalised_frequency,
+)
+from timeline.vibration_tile import VibrationTile
+
+__all__ = [
+    "DRIVE",
+    "EDIT_TOLERANCE",
+    "TRANSIENT_MAX",
+    "Emphasis",
+    "VibrationDesign",
+    "VibrationTile",
+    "design_of",
+    "place_design",
+]
+
+DRIVE = "drive"
+TRANSIENT_MAX = 0.05  # s: sine-generator clips up to this long are read as emphasis
+EDIT_TOLERANCE = 0.005  # max amplitude error of breakpoints reduced after a fade
+FADE_GRID = 0.001  # s between fade samples before reduction
+
+
+def place_design(
+    project: Project,
+    design: VibrationDesign,
+    *,
+    at: float = 0.0,
+    track_id: str | None = None,
+    name: str = "vibration",
+    source: str = "",
+    sharpness: str = "sqrt",
+) -> Project:
+    """Put a design on a drive track at `at` seconds as editable envelope data."""
+    return place_design_clip(
+        project, design, at=at, track_id=track_id, name=name, source=source, sharpness=sharpness
+    )[0]
+
+
+def place_design_clip(
+    project: Project,
+    design: VibrationDesign,
+    *,
+    at: float = 0.0,
+    track_id: str | None = None,
+    name: str = "vibration",
+    source: str = "",
+    sharpness: str = "sqrt",
+) -> tuple[Project, str]:
+    """place_design, also returning the new clip's id."""
+    if track_id is None:
+        track_id = next((t.id for t in project.tracks if t.kind == DRIVE), None)
+        if track_id is None:
+            project, track_id = edits.add_track(project, DRIVE)
+    elif project.track(track_id).kind != DRIVE:
+        raise EditError("a vibration design goes on a drive track")
+    project, tile_id = edits.add_tile(project, VibrationTile(design, name, source, sharpness))
+    return edits.add_clip(project, track_id, tile_id, at)
+
+
+def design_of(
+    project: Project, track_ids: list[str] | None = None, *, rate: float | None = None
+) -> VibrationDesign:
+    """The sounding drive tracks (all, or `track_ids`) as a design in timeline seconds."""
+    drive = [t for t in mixer.active_tracks(project, track_ids) if t.kind == DRIVE]
+    if not any(t.clips for t in drive):
+        raise EditError("the project has no sounding drive track with clips")
+    pieces: list[VibrationDesign] = []
+    accents: list[Emphasis] = []
+    exact = True
+    for track in drive:
+        factor = _track_factor(track)
+        for clip in track.clips:
+            tile = project.tile(clip.tile_id)
+            accent = _as_emphasis(tile, clip, factor)
+            if accent is not None:
+                accents.append(accent)
+                continue
+            piece = _clip_design(clip, tile, factor) if isinstance(tile, VibrationTile) else None
+            if piece is None:
+                exact = False
+            else:
+                pieces.append(piece)
+    if exact and not _overlapping(pieces):
+        return _joined(pieces, accents)
+    return _analysed(project, drive, rate)
+
+
+def sharpness_convention(project: Project, track_ids: list[str] | None = None) -> str:
+    """The AHAP sharpness convention of the first design on the drive tracks ("sqrt" if none)."""
+    for track in mixer.active_tracks(project, track_ids):
+        for clip in track.clips:
+            tile = project.tile(clip.tile_id)
+            if track.kind == DRIVE and isinstance(tile, VibrationTile):
+                return tile.sharpness
+    return "sqrt"
+
+
+# --- exact reading of envelope clips ------------------------------------------------------------
+
+
+def _track_factor(track: Track) -> float:
+    """How a track scales its clips relative to the drive kind's full scale."""
+    kind_scale = track_kind(track.kind).full_scale
+    return track.gain * (track.full_scale or kind_scale) / kind_scale
+
+
+def _as_emphasis(tile, clip: Clip, factor: float) -> Emphasis | None:
+    """A short sine-generator clip read as an emphasis, or None."""
+    if not (
+        isinstance(tile, GeneratorTile)
+        and tile.generator == "sine"
+        and clip.duration <= TRANSIENT_MAX
+        and clip.offset == 0.0
+    ):
+        return None
+    level = abs(clip.gain * clip.scale * tile.param("amplitude") * factor)
+    hz = tile.param("frequency") / clip.stretch
+    return Emphasis(clip.start, min(level, 1.0), float(normalised_frequency(hz)))
+
+
+@dataclass(frozen=True)
+class _Mapping:
+    """How a clip maps its tile's seconds to the timeline and scales its amplitude."""
+
+    clip: Clip
+    gain: float
+
+    def time(self, u: float) -> float:
+        return self.clip.start + (u - self.clip.source_in) * self.clip.stretch
+
+    def frequency(self, f: float) -> float | None:
+        """The normalised frequency heard after a stretch, or None outside the carrier range."""
+        if self.clip.stretch == 1.0:
+            return f
+        hz = float(carrier_hz(f)) / self.clip.stretch
+        if not F_MIN - 1e-9 <= hz <= F_MAX + 1e-9:
+            return None
+        return float(normalised_frequency(hz))
+
+    def fade(self, t: np.ndarray) -> np.ndarray:
+        c = self.clip
+        env = fade_envelope(np.asarray(t) - c.start, c.duration, c.fade_in, c.fade_out)
+        return np.ones(np.shape(t)) if env is None else env
+
+
+def _clip_design(clip: Clip, tile: VibrationTile, factor: float) -> VibrationDesign | None:
+    """The clip's part of its design on the timeline, or None if edits make it not an envelope."""
+    if clip.offset != 0.0 or clip.reverse or (clip.stretch_mode == "repeat" and clip.stretch != 1):
+        return None
+    design = tile.design
+    m = _Mapping(clip, abs(clip.gain * clip.scale * factor))
+    lo, hi = clip.source_in, min(clip.source_out, design.duration)
+    amplitude = _cut(design.amplitude, lo, hi, outside=0.0)
+    frequency = _cut(design.frequency, lo, hi, outside=None)
+    freq = [(m.time(t), m.frequency(v)) for t, v in frequency]
+    if any(v is None for _, v in freq):
+        return None
+    amp = [(m.time(t), min(1.0, v * m.gain)) for t, v in amplitude]
+    faded = clip.fade_in.length > 0 or clip.fade_out.length > 0
+    if faded:
+        amp = _faded(amp, m)
+    accents = []
+    for e in design.emphasis:
+        if clip.source_in <= e.time < clip.source_out:
+            f = m.frequency(e.frequency)
+            if f is None:
+                return None
+            t = m.time(e.time)
+            level = e.amplitude * m.gain * (float(m.fade(np.array([t]))[0]) if faded else 1.0)
+            accents.append(Emphasis(t, min(1.0, level), f))
+    end = max([m.time(hi)] + [t for t, _ in amp] + [t for t, _ in freq] + [e.time for e in accents])
+    return VibrationDesign(tuple(amp), tuple(freq), tuple(accents), end)  # type: ignore[arg-type]
+
+
+def _cut(points, lo: float, hi: float, outside: float | None) -> list[tuple[float, float]]:
+    """Breakpoints within [lo, hi], with interpolated ends where the range cuts a segment."""
+    inside = [p for p in points if lo <= p[0] <= hi]
+    if len(inside) == len(points) or not points:
+        return list(points)
+    t = np.array([p[0] for p in points])
+    v = np.array([p[1] for p in points])
+
+    def at(x: float) -> float:
+        if outside is not None and (x < t[0] or x > t[-1]):
+            return outside
+        return float(np.interp(x, t, v))
+
+    out = list(inside)
+    if t[0] < lo and (not out or out[0][0] > lo):
+        out.insert(0, (lo, at(lo)))
+    if t[-1] > hi and (not out or out[-1][0] < hi):
+        out.append((hi, at(hi)))
+    return out
+
+
+def _faded(amp: list[tuple[float, float]], m: _Mapping) -> list[tuple[float, float]]:
+    """The amplitude breakpoints times the clip's fades, reduced within EDIT_TOLERANCE."""
+    if len(amp) < 2:
+        return [(t, v * float(m.fade(np.array([t]))[0])) for t, v in amp]
+    t0, t1 = amp[0][0], amp[-1][0]
+    grid = np.arange(t0, t1, FADE_GRID)
+    t = np.unique(np.concatenate([grid, [p[0] for p in amp]]))
+    v = np.interp(t, [p[0] for p in amp], [p[1] for p in amp]) * m.fade(t)
+    return simplify(t, v, EDIT_TOLERANCE)
+
+
+def _overlapping(pieces: list[VibrationDesign]) -> bool:
+    spans = sorted(_span(p) for p in pieces)
+    return any(b[0] < a[1] for a, b in zip(spans, spans[1:], strict=False))
+
+
+def _span(design: VibrationDesign) -> tuple[float, float]:
+    times = [t for t, _ in design.amplitude] + [e.time for e in design.emphasis]
+    return (min(times, default=design.duration), max(times, default=design.duration))
+
+
+def _joined(pieces: list[VibrationDesign], accents: list[Emphasis]) -> VibrationDesign:
+    """Non-overlapping pieces as one design, silent between them; extra accents added."""
+    pieces = sorted(pieces, key=_span)
+    if len(pieces) == 1 and not accents:
+        return pieces[0]
+    amplitude: list[tuple[float, float]] = []
+    frequency: list[tuple[float, float]] = []
+    for k, piece in enumerate(pieces):
+        amp = list(piece.amplitude)
+        if amp and k > 0 and amp[0][1] > 0:
+            amp.insert(0, (amp[0][0], 0.0))
+        if amp and k < len(pieces) - 1 and amp[-1][1] > 0:
+            amp.append((amp[-1][0], 0.0))
+        amplitude += amp
+        frequency += piece.frequency
+    emphasis = [e for p in pieces for e in p.emphasis] + accents
+    duration = max([p.duration for p in pieces] + [e.time + e.length for e in accents])
+    return VibrationDesign(tuple(amplitude), tuple(frequency), tuple(emphasis), duration)
+
+
+# --- analysis of anything else ------------------------------------------------------------------
+
+
+def _analysed(project: Project, drive: list[Track], rate: float | None) -> VibrationDesign:
+    """Render the drive tracks (emphasis clips apart) and analyse them into breakpoints."""
+    rate = float(rate or project.rate or DEFAULT_TIME_RATE)
+    accents, accent_ids = [], []
+    for track in drive:
+        for clip in track.clips:
+            found = _as_emphasis(project.tile(clip.tile_id), clip, _track_factor(track))
+            if found is not None:
+                accents.append(found)
+                accent_ids.append(clip.id)
+    rest = edits.remove_clips(project, accent_ids)
+    duration = max(c.end for t in drive for c in t.clips)
+    layer = mixer.render(rest, 0.0, duration, rate, "normal", [t.id for t in drive]).get(DRIVE)
+    if layer is None or not np.any(layer):
+        amp, freq = [(0.0, 0.0), (duration, 0.0)], [(0.0, DEFAULT_FREQUENCY)]
+    else:
+        amp, freq = envelope_breakpoints(layer / track_kind(DRIVE).full_scale, rate)
+        amp = trim_silence(amp)
+        freq = clip_points(freq, amp[0][0], amp[-1][0])
+    amp = [(t, round(v, 6)) for t, v in amp]
+    freq = [(t, round(v, 6)) for t, v in freq]
+    return VibrationDesign(tuple(amp), tuple(freq), tuple(accents), duration)

@@ -1,0 +1,182 @@
+"""A vibrotactile design as data: amplitude and frequency envelopes, emphasis, and its carrier.
+
+This is what .haptic and AHAP files hold and what `convert` makes. Times are seconds from the
+design's start; amplitude is 0..1 of full scale; frequency is normalised 0..1 as in .haptic and
+maps linearly to a carrier of F_MIN..F_MAX Hz. The carrier is synthesised only when rendering
+(`VibrationDesign.render`), exactly at any time: its phase is the closed-form integral of the
+piecewise-linear frequency envelope. No Qt, no plugins, no timeline model.
+
+Rendering conventions (ours; players differ): the amplitude envelope is linear between
+breakpoints and zero outside the first and last; the frequency envelope is linear between
+breakpoints and holds its end values (0.5 when there is none); an emphasis is a pulse of
+EMPHASIS_CYCLES carrier cycles at its own amplitude and frequency, full for the first cycle and
+fading linearly over the second, and the continuous carrier is ducked to zero under it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from timeline.errors import EditError
+
+F_MIN = 80.0  # Hz at normalised frequency 0
+F_MAX = 230.0  # Hz at normalised frequency 1
+DEFAULT_FREQUENCY = 0.5  # normalised frequency assumed when a design has no frequency envelope
+EMPHASIS_CYCLES = 2
+
+Breakpoints = tuple[tuple[float, float], ...]
+
+
+def carrier_hz(frequency: np.ndarray | float) -> np.ndarray | float:
+    """The carrier frequency (Hz) for a normalised frequency in 0..1."""
+    return F_MIN + np.clip(frequency, 0.0, 1.0) * (F_MAX - F_MIN)
+
+
+def normalised_frequency(hz: np.ndarray | float) -> np.ndarray | float:
+    """The normalised frequency (0..1) of a carrier frequency, clipped to the mapped range."""
+    return np.clip((np.asarray(hz, dtype=np.float64) - F_MIN) / (F_MAX - F_MIN), 0.0, 1.0)
+
+
+def _unit(value: float, what: str) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and 0.0 <= value <= 1.0):
+        raise EditError(f"{what} must be between 0 and 1, not {value!r}")
+    return value
+
+
+def _breakpoints(points, what: str) -> Breakpoints:
+    out = []
+    previous = 0.0
+    for k, (time, value) in enumerate(points):
+        time = float(time)
+        if not (math.isfinite(time) and time >= 0.0):
+            raise EditError(f"{what} breakpoint {k + 1} has time {time!r}; it must be >= 0 s")
+        if time < previous:
+            raise EditError(f"{what} breakpoint {k + 1} goes back in time ({time:g} s)")
+        previous = time
+        out.append((time, _unit(value, f"{what} breakpoint {k + 1}'s value")))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Emphasis:
+    """A short accent at `time` (s) with its own amplitude and normalised frequency (0..1)."""
+
+    time: float
+    amplitude: float
+    frequency: float
+
+    def __post_init__(self) -> None:
+        time = float(self.time)
+        if not (math.isfinite(time) and time >= 0.0):
+            raise EditError(f"an emphasis time must be a number >= 0 s, not {self.time!r}")
+        object.__setattr__(self, "time", time)
+        object.__setattr__(self, "amplitude", _unit(self.amplitude, "an emphasis amplitude"))
+        object.__setattr__(self, "frequency", _unit(self.frequency, "an emphasis frequency"))
+
+    @property
+    def length(self) -> float:
+        """Seconds the emphasis pulse lasts (EMPHASIS_CYCLES cycles of its carrier)."""
+        return EMPHASIS_CYCLES / float(carrier_hz(self.frequency))
+
+
+@dataclass(frozen=True)
+class VibrationDesign:
+    """Amplitude and frequency breakpoints (seconds, 0..1), emphasis, and the design's length."""
+
+    amplitude: Breakpoints
+    frequency: Breakpoints
+    emphasis: tuple[Emphasis, ...]
+    duration: float
+
+    def __post_init__(self) -> None:
+        amplitude = _breakpoints(self.amplitude, "amplitude")
+        frequency = _breakpoints(self.frequency, "frequency")
+        emphasis = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in self.emphasis)
+        emphasis = tuple(sorted(emphasis, key=lambda e: e.time))
+        duration = float(self.duration)
+        if not (math.isfinite(duration) and duration > 0.0):
+            raise EditError(f"a vibration design must last a positive time, not {duration!r} s")
+        latest = max(
+            [t for t, _ in amplitude] + [t for t, _ in frequency] + [e.time for e in emphasis],
+            default=0.0,
+        )
+        if latest > duration:
+            raise EditError(
+                f"a vibration design of {duration:g} s has a breakpoint at {latest:g} s"
+            )
+        object.__setattr__(self, "amplitude", amplitude)
+        object.__setattr__(self, "frequency", frequency)
+        object.__setattr__(self, "emphasis", emphasis)
+        object.__setattr__(self, "duration", duration)
+
+    @property
+    def extent(self) -> float:
+        """Seconds the design sounds for: its duration, or longer if an emphasis rings past it."""
+        return max([self.duration] + [e.time + e.length for e in self.emphasis])
+
+    def shifted(self, offset: float, duration: float | None = None) -> VibrationDesign:
+        """The same design `offset` seconds later (duration grows by the offset by default)."""
+        return VibrationDesign(
+            tuple((t + offset, v) for t, v in self.amplitude),
+            tuple((t + offset, v) for t, v in self.frequency),
+            tuple(Emphasis(e.time + offset, e.amplitude, e.frequency) for e in self.emphasis),
+            self.duration + offset if duration is None else duration,
+        )
+
+    def amplitude_at(self, u: np.ndarray) -> np.ndarray:
+        """The amplitude envelope at times u: linear between breakpoints, zero outside them."""
+        u = np.asarray(u, dtype=np.float64)
+        if not self.amplitude:
+            return np.zeros(u.shape)
+        t = np.array([p[0] for p in self.amplitude])
+        v = np.array([p[1] for p in self.amplitude])
+        return np.where((u < t[0]) | (u > t[-1]), 0.0, np.interp(u, t, v))
+
+    def frequency_at(self, u: np.ndarray) -> np.ndarray:
+        """The normalised frequency at times u, holding the end values outside the breakpoints."""
+        u = np.asarray(u, dtype=np.float64)
+        if not self.frequency:
+            return np.full(u.shape, DEFAULT_FREQUENCY)
+        t = np.array([p[0] for p in self.frequency])
+        v = np.array([p[1] for p in self.frequency])
+        return np.interp(u, t, v)
+
+    def cycles(self, u: np.ndarray) -> np.ndarray:
+        """Carrier cycles elapsed from time 0 to each u (the exact integral of its frequency)."""
+        u = np.asarray(u, dtype=np.float64)
+        points = self.frequency or ((0.0, DEFAULT_FREQUENCY),)
+        t = np.array([p[0] for p in points])
+        hz = np.asarray(carrier_hz(np.array([p[1] for p in points])), dtype=np.float64)
+        width = np.diff(t)
+        at_knots = hz[0] * t[0] + np.concatenate(
+            [[0.0], np.cumsum(0.5 * (hz[:-1] + hz[1:]) * width)]
+        )
+        k = np.searchsorted(t, u, side="right") - 1
+        before = k < 0
+        k = np.clip(k, 0, len(t) - 1)
+        d = u - t[k]
+        slope = np.zeros(len(t))
+        inner = width > 0
+        slope[:-1][inner] = (hz[1:][inner] - hz[:-1][inner]) / width[inner]
+        slope[-1] = 0.0
+        out = at_knots[k] + hz[k] * d + 0.5 * slope[k] * d * d
+        return np.where(before, hz[0] * u, out)
+
+    def render(self, u: np.ndarray) -> np.ndarray:
+        """The drive waveform (fraction of full scale) at times u; zero outside [0, extent]."""
+        u = np.asarray(u, dtype=np.float64)
+        phase = np.mod(self.cycles(u), 1.0)
+        out = self.amplitude_at(u) * np.sin(2.0 * np.pi * phase)
+        pulses = [(e, u - e.time) for e in self.emphasis]
+        pulses = [(e, d, (d >= 0.0) & (d < e.length)) for e, d in pulses]
+        for _, _, inside in pulses:
+            out[inside] = 0.0  # the continuous carrier is ducked under every emphasis
+        for e, d, inside in pulses:
+            fade = np.clip(2.0 * (1.0 - d[inside] / e.length), 0.0, 1.0)
+            hz = float(carrier_hz(e.frequency))
+            out[inside] += e.amplitude * fade * np.sin(2.0 * np.pi * hz * d[inside])
+        return np.where((u < 0.0) | (u > self.extent), 0.0, out)
