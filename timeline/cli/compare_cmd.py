@@ -10,11 +10,11 @@ import json
 import sys
 from pathlib import Path
 
-from timeline.errors import HapticTimelineError
 from timeline.projectfile import load
 from timeline.quality import DEFAULT_QUALITY, PRESETS
-from timeline.similarity.compare import compare, variant_icons
+from timeline.similarity.compare import compare
 from timeline.similarity.distance import ALIKE
+from timeline.similarity.icons import variant_icons
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -29,13 +29,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     projects = [(Path(path).stem, load(path)) for path in args.projects]
     icons = variant_icons(projects[0][1]) if len(projects) == 1 else projects
-    if len(icons) < 2:
-        raise HapticTimelineError(
-            "compare needs two icons: give two projects, or one with two saved variants"
-        )
-    names = [name for name, _ in icons]
-    if len(set(names)) < len(names):
-        raise HapticTimelineError(f"two icons share a name ({', '.join(names)}): rename a file")
     result = compare(icons, args.quality)
     if args.json:
         print(json.dumps(result.as_dict(), indent=2))

@@ -26,11 +26,13 @@ from . import variants
 from .autosave import Autosaver, Recoverable, recoverable
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
+from .findings_overlay import FindingsOverlay
 from .message_bar import MessageBar
 from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
 from .ruler import Ruler
+from .similarity_map import similarity_window
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
 from .transport import Transport
@@ -57,6 +59,7 @@ class MainWindow(QMainWindow):
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self._build()
         self.autosaver = Autosaver(self.doc)
+        self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
         self.doc.changed.connect(self._changed)
         self.doc.message.connect(self.messages.show_message)
         self.doc.modified_changed.connect(lambda _: self._update_title())
@@ -181,6 +184,8 @@ class MainWindow(QMainWindow):
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
+        self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
+        self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
 
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
@@ -547,5 +552,6 @@ class MainWindow(QMainWindow):
             event.ignore()
             return
         self.player.close()
+        self.findings.close()
         self.autosaver.discard()
         event.accept()

@@ -6,7 +6,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from timeline.limits.design import sample, variant_project
+from timeline.errors import HapticTimelineError
+from timeline.limits.design import sample
 from timeline.model import Project
 from timeline.similarity.distance import ALIKE, distances
 from timeline.similarity.features import Features, features
@@ -53,13 +54,15 @@ class Comparison:
         }
 
 
-def variant_icons(project: Project) -> list[tuple[str, Project]]:
-    """A project's saved variants as icons."""
-    return [(v.name, variant_project(project, v.name)) for v in project.variants]
-
-
 def compare(icons: list[tuple[str, Project]], quality: str = "normal") -> Comparison:
     """Measure each icon, the distances between them and the map that shows them."""
+    if len(icons) < 2:
+        raise HapticTimelineError(
+            "compare needs two icons: give two projects, or one with two saved variants"
+        )
+    names = [name for name, _ in icons]
+    if len(set(names)) < len(names):
+        raise HapticTimelineError(f"two icons share a name ({', '.join(names)}): rename one")
     measured = [features(name, sample(project, None, quality)) for name, project in icons]
     matrix, parts = distances(measured)
     coords, explained = classical_mds(matrix, 2)

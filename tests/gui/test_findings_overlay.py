@@ -1,0 +1,48 @@
+"""Findings shade the lanes and reach the message bar, and follow edits made with keys."""
+
+from __future__ import annotations
+
+import pytest
+from PySide6.QtCore import Qt
+
+from tests.gui.helpers import click, clip_point
+from timeline import edits, generator
+
+
+@pytest.fixture
+def stiff_window(qtbot, window):
+    """The two-track window plus a 3 N*m/rad spring (above the knob's 2.0) at 0.2-0.7 s."""
+    win = window
+    p = win.doc.project
+    p, level = edits.add_tile(p, generator("constant", 0.5, "level", value=1.0))
+    p, clip = edits.add_clip(p, win.ids["t3"], level, 0.2, gain=3.0)
+    win.doc.replace("spring too stiff", p)
+    win.ids["stiff"] = clip
+    qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
+    return win
+
+
+def test_a_crossed_limit_is_shaded_on_its_lane_and_said(stiff_window, qtbot) -> None:
+    win = stiff_window
+    shades = win.findings.shades
+    assert [s.area for s in shades] == ["device"]
+    rect = shades[0].rect()
+    g = win.view.geometry
+    assert rect.left() == pytest.approx(g.x(0.2)) and rect.right() == pytest.approx(g.x(0.7))
+    assert g.lane_at(rect.center().y()) == 2  # the stiffness lane
+    assert "stiffness-limit" in shades[0].toolTip() and "3 N*m/rad" in shades[0].toolTip()
+    assert win.messages.text.startswith("1 limit(s) crossed: stiffness-limit")
+    win.grab().save("/tmp/findings_overlay.png")
+
+
+def test_shading_follows_zoom_and_goes_with_the_clip(stiff_window, qtbot) -> None:
+    win = stiff_window
+    win.view.geometry.px_per_unit = 400.0
+    win.view.refresh()
+    assert win.findings.shades[0].rect().left() == pytest.approx(400.0 * 0.2)
+    click(win, clip_point(win, win.ids["stiff"]))
+    qtbot.keyClick(win.view.viewport(), Qt.Key.Key_Delete)
+    qtbot.waitUntil(lambda: win.findings.settled and not win.findings.shades, timeout=20_000)
+    assert win.messages.text == "No device or perception limit crossed"
+    qtbot.keyClick(win.view.viewport(), Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    qtbot.waitUntil(lambda: win.findings.settled and len(win.findings.shades) == 1, timeout=20_000)

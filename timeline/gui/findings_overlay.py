@@ -1,0 +1,162 @@
+"""Findings on the lanes: where the design crosses a device or perception limit, kept current.
+
+After each edit (debounced) the project is checked in a worker thread against the player's
+device (timeline.limits.check); the result shades the spans on the lanes whose layer it is
+about (device limits orange, perception purple; hover for the sentence) and puts one line in
+the message bar when the findings change.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+from PySide6.QtCore import QObject, QRectF, Qt, QTimer, Signal
+from PySide6.QtGui import QBrush, QColor, QPainter, QPen
+from PySide6.QtWidgets import QGraphicsRectItem
+
+from timeline.devices import DeviceInfo, open_device
+from timeline.errors import HapticTimelineError
+from timeline.kinds import track_kind
+from timeline.limits.check import Report, check
+from timeline.model import Project
+
+DELAY_MS = 250  # after the last edit
+COLOURS = {"device": QColor(230, 126, 34, 60), "perception": QColor(142, 68, 173, 50)}
+EDGES = {"device": QColor(211, 84, 0), "perception": QColor(110, 44, 140)}
+LAYER_OF = {"amplitude": "d", "frequency": "d"}  # a sub-JND measure's layer
+SHADE_Z = 15  # above clips, below the playhead and cursor
+
+
+class FindingShade(QGraphicsRectItem):
+    """One finding's span on one lane: hatched, outlined, its kind written at the bottom."""
+
+    def __init__(self, rect: QRectF, area: str, kind: str, tip: str) -> None:
+        super().__init__(rect)
+        self.area, self.kind = area, kind
+        self.setBrush(QBrush(COLOURS[area]))
+        self.setPen(QPen(EDGES[area], 1.5))
+        self.setZValue(SHADE_Z)
+        self.setToolTip(tip)
+        self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
+
+    def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
+        super().paint(painter, option, widget)
+        rect = self.rect()
+        painter.fillRect(rect, QBrush(EDGES[self.area], Qt.BrushStyle.BDiagPattern))
+        painter.setPen(EDGES[self.area])
+        font = painter.font()
+        font.setPointSizeF(7.5)
+        painter.setFont(font)
+        painter.drawText(rect.adjusted(3, 0, -2, -2), Qt.AlignmentFlag.AlignBottom, self.kind)
+
+
+def summary(report: Report) -> str:
+    """The message bar's line for a report."""
+    if not report.findings:
+        return "No device or perception limit crossed"
+    first = report.findings[0]
+    more = len(report.findings) - 1
+    tail = f" (+{more} more: hover the shading)" if more else ""
+    return f"{len(report.findings)} limit(s) crossed: {first.describe()}{tail}"
+
+
+class FindingsOverlay(QObject):
+    """Checks the document after edits and shows the findings on the timeline view."""
+
+    ready = Signal(object, int)  # Report or HapticTimelineError, version
+
+    def __init__(self, doc, view, messages, player) -> None:  # noqa: ANN001 - GUI objects
+        super().__init__(view)
+        self.doc, self.view, self.messages, self.player = doc, view, messages, player
+        self.report: Report | None = None
+        self.version = 0
+        self._done = -1  # the version the shown report belongs to
+        self.shades: list[FindingShade] = []
+        self._infos: dict[str, DeviceInfo] = {}
+        self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="findings")
+        self._timer = QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.timeout.connect(self._start)
+        self.ready.connect(self._show)
+        doc.changed.connect(lambda _project: self.schedule())
+        view.scene().sceneRectChanged.connect(lambda _rect: self._redraw())  # zoom, new lanes
+        self.schedule()
+
+    @property
+    def settled(self) -> bool:
+        """True when the shown findings belong to the document as it is."""
+        return self.report is not None and not self._timer.isActive() and self._done == self.version
+
+    def schedule(self) -> None:
+        """Check again once edits pause."""
+        self.version += 1
+        self._timer.start(DELAY_MS)
+
+    def device_info(self) -> DeviceInfo:
+        """What the player's device declares (asked once per device)."""
+        name = self.player.device_name
+        if name not in self._infos:
+            with open_device(name) as device:
+                self._infos[name] = device.info
+        return self._infos[name]
+
+    def _start(self) -> None:
+        version, project = self.version, self.doc.project
+        try:
+            info = self.device_info()
+        except HapticTimelineError as exc:
+            self.ready.emit(exc, version)
+            return
+        future = self._pool.submit(_check, project, info)
+        future.add_done_callback(lambda f: self.ready.emit(f.result(), version))
+
+    def _show(self, result: Report | HapticTimelineError, version: int) -> None:
+        if version != self.version:
+            return  # an edit came since: its own check follows
+        self._done = version
+        if isinstance(result, HapticTimelineError):
+            self.messages.show_message(f"Cannot check the design: {result}", "error")
+            return
+        changed = self.report is None or _keys(self.report) != _keys(result)
+        self.report = result
+        self._draw(self.doc.project, result)
+        if changed:
+            self.messages.show_message(summary(result), "finding" if result.findings else "info")
+
+    def _redraw(self) -> None:
+        if self.report is not None:
+            self._draw(self.doc.project, self.report)
+
+    def _draw(self, project: Project, report: Report) -> None:
+        scene = self.view.scene()
+        for shade in self.shades:
+            scene.removeItem(shade)
+        self.shades = []
+        geometry = scene.geometry
+        terms = [track_kind(t.kind).term for t in project.tracks]
+        for finding in report.findings:
+            layer = LAYER_OF.get(finding.layer, finding.layer)
+            lanes = [i for i, term in enumerate(terms) if term == layer] or range(len(terms))
+            x0, x1 = geometry.x(finding.start), geometry.x(finding.stop)
+            for lane in lanes:
+                rect = QRectF(x0, geometry.lane_top(lane) + 1, max(x1 - x0, 2.0),
+                              geometry.lane_height - 2)  # fmt: skip
+                shade = FindingShade(rect, finding.area, finding.kind, finding.describe())
+                scene.addItem(shade)
+                self.shades.append(shade)
+
+    def close(self) -> None:
+        """Stop checking (the window is closing)."""
+        self._timer.stop()
+        self._pool.shutdown(wait=False, cancel_futures=True)
+
+
+def _check(project: Project, info: DeviceInfo) -> Report | HapticTimelineError:
+    try:
+        return check(project, info)
+    except HapticTimelineError as exc:
+        return exc
+
+
+def _keys(report: Report) -> list[tuple[str, float, float]]:
+    return [(f.kind, round(f.start, 6), round(f.stop, 6)) for f in report.findings]
