@@ -1,11 +1,13 @@
 """Edit-to-feel latency: from releasing a drag to the new mix being live on the playing device.
 
-A large project (16 tracks, 640 clips, 120 s at 10 kHz) plays in a loop on the simulated knob
-while a script drags clips in the editor window (offscreen) with real mouse events. For each drag
-the clock starts just before the mouse release and stops when the device pulls the first block
-rendered from the new project state. Prints the median and the 99th percentile.
+A large project (by default 16 tracks, 640 clips, 120 s at 10 kHz; --tracks and --clips set
+other sizes) plays in a loop on the simulated knob while a script drags clips in the editor
+window (offscreen) with real mouse events. For each drag the clock starts just before the mouse
+release and stops when the device pulls the first block rendered from the new project state.
+Prints the median and the 99th percentile.
 
     QT_QPA_PLATFORM=offscreen python benchmarks/edit_to_feel.py [--edits 200]
+        [--tracks 64 --clips 20000]
 """
 
 from __future__ import annotations
@@ -25,29 +27,33 @@ from timeline import edits  # noqa: E402
 from timeline.tiles import generator  # noqa: E402
 
 
-def large_project():
+def large_project(tracks: int = 16, per_track: int = 40):
+    """Tracks of short clips 3 s apart (staggered per track), four generator tiles."""
     project = edits.new_project()
     tiles = []
     for name, params in (("sine", {"frequency": 40}), ("am", {}), ("chirp", {}), ("noise", {})):
         project, tile = edits.add_tile(project, generator(name, 0.15, **params))
         tiles.append(tile)
-    for i in range(16):
+    spacing = 120.0 / per_track
+    for i in range(tracks):
         project, track = edits.add_track(project, ("drive", "stiffness", "damping")[i % 3])
-        for j in range(40):
-            project, _ = edits.add_clip(
-                project, track, tiles[(i + j) % 4], j * 3.0 + 0.1 * i, gain=0.2
-            )
+        for j in range(per_track):
+            start = j * spacing + 0.1 * spacing / 3.0 * (i % 30)
+            project, _ = edits.add_clip(project, track, tiles[(i + j) % 4], start, gain=0.2)
     return project
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--edits", type=int, default=200)
+    parser.add_argument("--tracks", type=int, default=16)
+    parser.add_argument("--clips", type=int, default=640, help="clips in all (spread over tracks)")
     args = parser.parse_args()
+    per_track = max(1, args.clips // args.tracks)
     app = QApplication.instance() or QApplication([])
     from timeline.gui.main_window import MainWindow
 
-    win = MainWindow(large_project())
+    win = MainWindow(large_project(args.tracks, per_track))
     win.resize(1400, 900)
     win.show()
     win.view.geometry.px_per_unit = 200.0
@@ -88,7 +94,10 @@ def main() -> None:
     win.player.close()
     ms = sorted(1e3 * x for x in latencies)
     p99 = ms[min(len(ms) - 1, int(round(0.99 * (len(ms) - 1))))]
-    print(f"edits: {len(ms)} on 16 tracks x 40 clips, 120 s at 10 kHz, normal quality, sim device")
+    print(
+        f"edits: {len(ms)} on {args.tracks} tracks x {per_track} clips, 120 s at 10 kHz, "
+        "normal quality, sim device"
+    )
     print(
         f"edit-to-feel median {statistics.median(ms):.2f} ms, p99 {p99:.2f} ms, max {ms[-1]:.2f} ms"
     )

@@ -163,6 +163,7 @@ class AudioFormat:
             ) from None
         if done < total:
             raise FormatError(f"{path.name} is truncated: it ends after {done} of {total} frames")
+        out.setflags(write=False)  # the tile keeps this array rather than a copy
         return out
 
     def write(self, source: Layers, path: Path, subtype: str | None = None, **options: Any) -> None:

@@ -9,7 +9,7 @@ import math
 import sys
 from pathlib import Path
 
-from timeline import edits, generator, save, spline
+from timeline import edits, generator, markers, save, spline
 from timeline.model import Project
 
 HERE = Path(__file__).resolve().parent
@@ -42,7 +42,10 @@ def fan_knob() -> Project:
     p = edits.stretch_clip(p, mid, 12.0, "repeat")
     p, _ = edits.add_clip(p, damping, level, deg(260), gain=0.5)
     p, whole = edits.add_clip(p, mass, level, 0.0, gain=0.2)
-    return edits.stretch_clip(p, whole, 14.0, "repeat")
+    p = edits.stretch_clip(p, whole, 14.0, "repeat")
+    for name, at in (("Off", 50), ("Lo", 110), ("Med", 170), ("Hi", 230)):
+        p, _ = markers.add_marker(p, deg(at), name)  # the fan's settings, on the ruler
+    return p
 
 
 def notification_buzz() -> Project:

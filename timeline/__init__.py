@@ -11,13 +11,45 @@ The Python API the CLI and the editor use::
     save(p, "buzz.htl")
 """
 
-from timeline import edits
-from timeline.errors import EditError, HapticTimelineError, ProjectFileError, RenderError
-from timeline.history import History
-from timeline.mixer import Mixer, render, render_chunks
-from timeline.model import Clip, Fade, Project, Track
-from timeline.projectfile import load, save
-from timeline.tiles import GeneratorTile, SampledTile, SplineTile, generator, spline
+from importlib import import_module
+from typing import Any
+
+# Public names -> the module that defines them. They load on first use, so the command line's
+# --help and verbs that need little do not pay for numpy, scipy and the mixer.
+_EXPORTS = {
+    "edits": "timeline.edits",
+    "EditError": "timeline.errors",
+    "HapticTimelineError": "timeline.errors",
+    "ProjectFileError": "timeline.errors",
+    "RenderError": "timeline.errors",
+    "History": "timeline.history",
+    "Mixer": "timeline.mixer",
+    "render": "timeline.mixer",
+    "render_chunks": "timeline.mixer",
+    "Clip": "timeline.model",
+    "Fade": "timeline.model",
+    "Project": "timeline.model",
+    "Track": "timeline.model",
+    "load": "timeline.projectfile",
+    "save": "timeline.projectfile",
+    "GeneratorTile": "timeline.tiles",
+    "SampledTile": "timeline.tiles",
+    "SplineTile": "timeline.tiles",
+    "generator": "timeline.tiles",
+    "spline": "timeline.tiles",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'timeline' has no attribute {name!r}")
+    value = import_module(module)
+    if name != "edits":
+        value = getattr(value, name)
+    globals()[name] = value
+    return value
+
 
 __all__ = [
     "Clip",

@@ -11,9 +11,9 @@ something return (project, new_id).
 from __future__ import annotations
 
 import math
+from bisect import bisect_right
 from collections.abc import Iterable
 from dataclasses import replace
-from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -106,12 +106,11 @@ def add_tile(project: Project, tile: Tile, tab: str = "Scratch") -> tuple[Projec
     """Add a tile to the library and to a palette tab."""
     project.tab(tab)
     project, tile_id = project.with_id("tile")
-    tiles = {**project.tiles, tile_id: tile}
     palette = tuple(
         replace(t, tile_ids=t.tile_ids + (tile_id,)) if t.name == tab else t
         for t in project.palette
     )
-    return replace(project, tiles=MappingProxyType(tiles), palette=palette), tile_id
+    return replace(project, tiles=project.tiles.set(tile_id, tile), palette=palette), tile_id
 
 
 def replace_tile(project: Project, tile_id: str, tile: Tile) -> Project:
@@ -124,7 +123,7 @@ def replace_tile(project: Project, tile_id: str, tile: Tile) -> Project:
                     f"a clip plays this tile up to {clip.source_out:.4g}; it cannot end at "
                     f"{tile.duration:.4g}"
                 )
-    return replace(project, tiles=MappingProxyType({**project.tiles, tile_id: tile}))
+    return replace(project, tiles=project.tiles.set(tile_id, tile))
 
 
 def remove_tile(project: Project, tile_id: str) -> Project:
@@ -133,17 +132,16 @@ def remove_tile(project: Project, tile_id: str) -> Project:
     users = [c.id for t in project.tracks for c in t.clips if c.tile_id == tile_id]
     if users:
         raise EditError(f"tile {tile_id!r} is used by {len(users)} clip(s); remove them first")
-    tiles = {k: v for k, v in project.tiles.items() if k != tile_id}
     palette = tuple(
         replace(t, tile_ids=tuple(i for i in t.tile_ids if i != tile_id)) for t in project.palette
     )
-    return replace(project, tiles=MappingProxyType(tiles), palette=palette)
+    return replace(project, tiles=project.tiles.delete(tile_id), palette=palette)
 
 
 def rename_tile(project: Project, tile_id: str, name: str) -> Project:
     """Give a tile a new name."""
     tile = project.tile(tile_id).with_name(name)
-    return replace(project, tiles=MappingProxyType({**project.tiles, tile_id: tile}))
+    return replace(project, tiles=project.tiles.set(tile_id, tile))
 
 
 def add_tab(project: Project, name: str) -> Project:
@@ -210,17 +208,39 @@ def _check_source(project: Project, clip: Clip) -> Clip:
     return clip
 
 
-def _put_clip(project: Project, clip: Clip, track_id: str | None = None) -> Project:
-    """Replace a clip (same id) or add it to a track."""
+def _put_clip(
+    project: Project, clip: Clip, track_id: str | None = None, new: bool = False
+) -> Project:
+    """Replace a clip (same id) or add it to a track.
+
+    Only the tracks that lose or gain the clip are rebuilt (the others are shared with the
+    previous state), and the clip goes in by bisection on (start, id), so an edit costs a tuple
+    copy of one track rather than a walk over every clip.
+    """
     _check_source(project, clip)
-    target = track_id or project.find_clip(clip.id)[0].id
-    tracks = []
-    for t in project.tracks:
-        clips = tuple(c for c in t.clips if c.id != clip.id)
-        if t.id == target:
-            clips = tuple(sorted(clips + (clip,), key=lambda c: (c.start, c.id)))
-        tracks.append(replace(t, clips=clips))
-    return replace(project, tracks=tuple(tracks))
+    source = None if new else next((t for t in project.tracks if clip.id in t.clips_by_id), None)
+    target = track_id or (source.id if source is not None else None)
+    if target is None:
+        raise EditError(f"there is no clip {clip.id!r}")
+    changed = {}
+    if source is not None:
+        changed[source.id] = tuple(c for c in source.clips if c.id != clip.id)
+    clips = changed.get(target)
+    if clips is None:
+        clips = project.track(target).clips
+    at = bisect_right(clips, (clip.start, clip.id), key=_order)
+    changed[target] = clips[:at] + (clip,) + clips[at:]
+    return replace(
+        project,
+        tracks=tuple(
+            replace(t, clips=changed[t.id]) if t.id in changed else t for t in project.tracks
+        ),
+    )
+
+
+def _order(clip: Clip) -> tuple[float, str]:
+    """The order of clips on a track: by start, then id."""
+    return (clip.start, clip.id)
 
 
 def add_clip(
@@ -233,7 +253,7 @@ def add_clip(
     fields.setdefault("source_out", tile.duration)
     project, clip_id = project.with_id("c")
     clip = Clip(id=clip_id, tile_id=tile_id, start=start, **fields)
-    return _put_clip(project, clip, track_id), clip_id
+    return _put_clip(project, clip, track_id, new=True), clip_id
 
 
 def remove_clips(project: Project, clip_ids: Iterable[str]) -> Project:
@@ -277,7 +297,7 @@ def duplicate_clip(
     track, clip = project.find_clip(clip_id)
     project, new_id = project.with_id("c")
     copy = replace(clip, id=new_id, start=clip.end if start is None else start)
-    return _put_clip(project, copy, track_id or track.id), new_id
+    return _put_clip(project, copy, track_id or track.id, new=True), new_id
 
 
 def _trimmed(clip: Clip, new_start: float, new_end: float) -> Clip:
@@ -336,7 +356,7 @@ def split_clip(project: Project, clip_id: str, at: float) -> tuple[Project, str]
     left = replace(left, fade_in=_fit(clip.fade_in, left.duration))
     right = replace(right, id=right_id, fade_out=_fit(clip.fade_out, right.duration))
     project = _put_clip(project, left)
-    return _put_clip(project, right, track.id), right_id
+    return _put_clip(project, right, track.id, new=True), right_id
 
 
 def stretch_clip(project: Project, clip_id: str, factor: float, mode: str | None = None) -> Project:
@@ -466,7 +486,7 @@ def switch_variant(project: Project, name: str) -> Project:
     if project.active_variant and project.active_variant != name:
         project = save_variant(project, project.active_variant)
         target = project.variant(name)
-    tiles = MappingProxyType({**project.tiles, **target.tiles})
+    tiles = project.tiles.update(target.tiles)
     return replace(project, tracks=target.tracks, tiles=tiles, active_variant=name)
 
 

@@ -69,6 +69,23 @@ class History:
     def redo_label(self) -> str:
         return self._steps[self._index + 1].label if self.can_redo else ""
 
+    @property
+    def labels(self) -> list[str]:
+        """Every step's label, oldest first (the first is "open")."""
+        return [step.label for step in self._steps]
+
+    @property
+    def index(self) -> int:
+        """Which step the project is at."""
+        return self._index
+
+    def go_to(self, index: int) -> Project:
+        """Jump to a step (undoing or redoing every step in between)."""
+        if not 0 <= index < len(self._steps):
+            raise IndexError(f"there is no step {index}")
+        self._index = index
+        return self.project
+
     def mark_clean(self) -> None:
         """Remember the current state as saved."""
         self._clean = self._index

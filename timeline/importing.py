@@ -21,10 +21,8 @@ from timeline.formats import (
     as_imported,
     readers_for,
 )
-from timeline.kinds import track_kind
+from timeline.kinds import DEFAULT_KIND, track_kind
 from timeline.model import Project
-
-DEFAULT_KIND = "drive"
 
 
 def check_readable(path: Path) -> None:

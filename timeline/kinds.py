@@ -6,6 +6,8 @@ from dataclasses import dataclass
 
 from timeline import plugins
 
+DEFAULT_KIND = "drive"  # the track kind an imported tile goes on unless the user picks another
+
 
 @dataclass(frozen=True)
 class TrackKind:

@@ -21,15 +21,14 @@ import math
 import sys
 from collections import OrderedDict
 from collections.abc import Iterable, Iterator
-from dataclasses import astuple, dataclass, replace
+from dataclasses import astuple, dataclass
 from itertools import chain
 from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg.blas import daxpy
 
 from timeline import memory
-from timeline.clip_render import clip_sample_range, render_clip
+from timeline.clip_render import clip_sample_range, render_shape
 from timeline.errors import HapticTimelineError, RenderError
 from timeline.kinds import track_kind
 from timeline.model import Clip, Project, Track
@@ -392,6 +391,7 @@ class Mixer:
                 self._sum_all(out, window.placed, grid)
                 return
             members = _members(window, blocks, grid.n)
+            scratch = np.empty(BLOCK)
             values: dict[tuple, np.ndarray] = {}  # shapes in use, dropped after their last block
             for b in blocks:
                 lo, hi = b * BLOCK, min((b + 1) * BLOCK, grid.n)
@@ -401,7 +401,7 @@ class Mixer:
                     x = values.get(p.shape)
                     if x is None:
                         x = values[p.shape] = self._shape_values(p, grid)
-                    _add(out, x, p, max(p.i0, lo), min(p.i1, hi))
+                    _add(out, x, p, max(p.i0, lo), min(p.i1, hi), scratch)
                     if p.i1 <= hi:
                         values.pop(p.shape, None)
                 _check_finite(acc, grid, lo)
@@ -410,12 +410,12 @@ class Mixer:
     def _sum_all(self, out: np.ndarray, placed: list[_Placed], grid: _Grid) -> None:
         """Sum every clip into the whole buffer: per sample the same order as block by block."""
         out.fill(0.0)
+        scratch = np.empty(BLOCK)
         for p in placed:
-            x, i0, i1, weight = self._shape_values(p, grid), p.i0, p.i1, p.weight
-            a = i0
-            while a < i1:  # in the same pieces as _sum adds, so the sums are bit-identical
-                z = min(i1, (a // BLOCK + 1) * BLOCK)
-                daxpy(x, out, z - a, weight, a - i0, 1, a, 1)
+            x, a = self._shape_values(p, grid), p.i0
+            while a < p.i1:  # in the same pieces as _sum adds, so the sums are bit-identical
+                z = min(p.i1, (a // BLOCK + 1) * BLOCK)
+                _add(out, x, p, a, z, scratch)
                 a = z
         _check_finite(out, grid, 0)
         self.stats.block_sums += -(-grid.n // BLOCK)
@@ -425,16 +425,22 @@ class Mixer:
         if values is not None:
             return values
         self.stats.shape_renders += 1
-        unit = replace(p.clip, start=0.0, gain=1.0)
-        values = render_clip(unit, p.tile, p.pos0, grid.rate, p.i1 - p.i0, grid.quality)
+        values = render_shape(p.clip, p.tile, p.pos0, grid.rate, p.i1 - p.i0, grid.quality)
         values.setflags(write=False)
         self._shapes.put(p.shape, values, values.nbytes)
         return values
 
 
-def _add(out: np.ndarray, x: np.ndarray, p: _Placed, a: int, z: int) -> None:
-    """out[a:z] += p.weight * x[a - p.i0 : z - p.i0] in place (BLAS axpy, one pass)."""
-    daxpy(x, out, z - a, p.weight, a - p.i0, 1, a, 1)
+def _add(out: np.ndarray, x: np.ndarray, p: _Placed, a: int, z: int, scratch: np.ndarray) -> None:
+    """out[a:z] += p.weight * x[a - p.i0 : z - p.i0], in a scratch piece of at most one block.
+
+    Plain numpy on one thread: the product is rounded, then added (the same two roundings
+    whichever path sums a sample, so re-sums are bit-identical to fresh renders), and the cost
+    does not depend on how many BLAS threads a loaded machine runs.
+    """
+    tmp = scratch[: z - a]
+    np.multiply(x[a - p.i0 : z - p.i0], p.weight, out=tmp)
+    np.add(out[a:z], tmp, out=out[a:z])
 
 
 def _check_finite(values: np.ndarray, grid: _Grid, first: int) -> None:

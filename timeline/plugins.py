@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import warnings
 from functools import cache
-from importlib.metadata import entry_points
 from typing import Any
 
 from timeline.errors import PluginError
@@ -17,6 +16,8 @@ DEVICES = "haptic_timeline.devices"
 @cache
 def load_group(group: str) -> dict[str, Any]:
     """Load every plugin of an entry-point group, skipping broken ones with a warning."""
+    from importlib.metadata import entry_points  # 30 ms: only when a plugin is first needed
+
     found: dict[str, Any] = {}
     for ep in sorted(entry_points(group=group), key=lambda e: e.name):
         try:

@@ -26,7 +26,7 @@ def refuse_constant(name: str) -> float:
 def obj(value: Any, where: str) -> dict:
     """The value as a JSON object, or FieldError."""
     if not isinstance(value, dict):
-        raise FieldError(f"{where} is not an object")
+        raise FieldError(f"{where} should be an object")
     return value
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from functools import cache
 
 import numpy as np
 
@@ -116,10 +117,18 @@ def _band_limited(
     return out[::-1] if reverse else out
 
 
+@cache
+def _kaiser() -> np.ndarray:
+    """The sinc filter's window (the same every call: computed once)."""
+    window = np.kaiser(2 * _SINC_HALF, _SINC_BETA)
+    window.setflags(write=False)
+    return window
+
+
 def _fractional_delay(x: np.ndarray, first: int, fraction: float, n: int) -> np.ndarray:
     """x at indices first + fraction + i (i < n) by a Kaiser-windowed sinc (band-limited x)."""
     k = np.arange(-_SINC_HALF + 1, _SINC_HALF + 1)
-    taps = np.sinc(k - fraction) * np.kaiser(2 * _SINC_HALF, _SINC_BETA)
+    taps = np.sinc(k - fraction) * _kaiser()
     taps /= taps.sum()
     span = _take(x, first - _SINC_HALF, n + 2 * _SINC_HALF)
     # out[i] = sum_k taps[k] * x[first + i + k]

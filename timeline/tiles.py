@@ -18,6 +18,7 @@ from timeline.errors import EditError
 from timeline.generators import GENERATORS
 from timeline.quality import QualityPreset
 from timeline.resample import sample_grid
+from timeline.splines import natural_cubic, pchip
 from timeline.vibration_tile import VibrationTile
 
 MAX_TILE_SAMPLES = 2**31  # ~16 GiB of float64; anything larger is refused as a hostile size
@@ -40,6 +41,28 @@ def _evaluate_decimated(fn, u0: float, du: float, n: int, decimation: int) -> np
     return np.interp(np.arange(n), coarse_i, coarse)
 
 
+def _zero_outside(u: np.ndarray, values: np.ndarray, duration: float, lo: float,
+                  hi: float) -> np.ndarray:  # fmt: skip
+    """values where 0 <= u <= duration, else 0 (lo, hi: the range of u), shaped like u."""
+    if lo < 0 or hi > duration or values.shape != u.shape:
+        return np.where((u < 0) | (u > duration), 0.0, values)
+    return values
+
+
+def _frozen_samples(data: object) -> bool:
+    """True for a read-only 1-D float64 array that owns its memory (a reader's fresh array):
+    nobody else can change it, so a tile can keep it instead of a copy (an hour at 44.1 kHz is
+    1.3 GB)."""
+    return (
+        isinstance(data, np.ndarray)
+        and data.dtype == np.float64
+        and data.ndim == 1
+        and data.base is None
+        and data.flags.c_contiguous
+        and not data.flags.writeable
+    )
+
+
 @dataclass(frozen=True, eq=False)
 class SampledTile:
     """Samples at a rate (imports, merges, freehand drawing); sample k sits at k/rate."""
@@ -50,7 +73,9 @@ class SampledTile:
     source: str = ""  # where it came from (file name), for the user's information
 
     def __post_init__(self) -> None:
-        data = np.array(self.data, dtype=np.float64, copy=True).reshape(-1)
+        data = self.data
+        if not _frozen_samples(data):  # anything another owner could change is copied
+            data = np.array(data, dtype=np.float64, copy=True).reshape(-1)
         if data.size == 0:
             raise EditError("a sampled tile needs at least one sample")
         if data.size > MAX_TILE_SAMPLES:
@@ -76,7 +101,7 @@ class SampledTile:
 
     @cached_property
     def key(self) -> str:
-        h = hashlib.blake2b(self.data.tobytes(), digest_size=16)
+        h = hashlib.blake2b(memoryview(self.data), digest_size=16)  # no copy of the samples
         h.update(repr(self.rate).encode())
         return "sampled:" + h.hexdigest()
 
@@ -129,26 +154,26 @@ class SplineTile:
 
     @cached_property
     def _curve(self):
-        from scipy.interpolate import CubicSpline, PchipInterpolator
-
         t = np.array([p[0] for p in self.points])
         v = np.array([p[1] for p in self.points])
         if len(t) == 1:
             return lambda u: np.full(np.shape(u), v[0])
         if len(t) == 2:
             return lambda u: np.interp(u, t, v)
-        if self.method == "pchip":
-            return PchipInterpolator(t, v, extrapolate=False)
-        return CubicSpline(t, v, bc_type="natural", extrapolate=False)
+        return pchip(t, v) if self.method == "pchip" else natural_cubic(t, v)
 
     def evaluate(self, u: np.ndarray) -> np.ndarray:
         """Exact curve values; before the first point and after the last the end values hold."""
         u = np.asarray(u, dtype=np.float64)
         first, last = self.points[0], self.points[-1]
         out = np.asarray(self._curve(np.clip(u, first[0], last[0])), dtype=np.float64)
-        out = np.where(u <= first[0], first[1], out)
-        out = np.where(u >= last[0], last[1], out)
-        return np.where((u < 0) | (u > self.duration), 0.0, out)
+        lo, hi = (float(u.min()), float(u.max())) if u.size else (0.0, 0.0)
+        # each mask only where some u needs it (a clip's grid is usually inside the curve)
+        if lo <= first[0]:
+            out = np.where(u <= first[0], first[1], out)
+        if hi >= last[0]:
+            out = np.where(u >= last[0], last[1], out)
+        return _zero_outside(u, out, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
         return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
@@ -202,7 +227,8 @@ class GeneratorTile:
         with np.errstate(all="ignore"):
             values = GENERATORS[self.generator].function(u, self.duration, **dict(self.params))
         values = np.asarray(values, dtype=np.float64)
-        return np.where((u < 0) | (u > self.duration), 0.0, values)
+        lo, hi = (float(u.min()), float(u.max())) if u.size else (0.0, 0.0)
+        return _zero_outside(u, values, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
         return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)

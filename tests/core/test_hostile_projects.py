@@ -83,7 +83,7 @@ CASES = {
     "zero project rate": (lambda d: d["project"].update(rate=0), "rate should be above zero"),
     "reverse as text": (lambda d: _clip(d).update(reverse="no"), "reverse should be true or false"),
     "mute as number": (lambda d: d["project"]["tracks"][0].update(mute=1), "mute should be true"),
-    "fade as number": (lambda d: _clip(d).update(fade_in=5), "fade_in is not an object"),
+    "fade as number": (lambda d: _clip(d).update(fade_in=5), "fade_in should be an object"),
     "negative fade": (
         lambda d: _clip(d).update(fade_in={"length": -1, "shape": "linear"}),
         r"clips\[0\].fade_in: a fade's length cannot be negative",

@@ -69,3 +69,28 @@ def test_a_new_project_lists_each_template_once(window, tmp_path, axis):
     again = projectfile.load(tmp_path / "new.htl")
     assert template_names(again) == names
     assert len(again.tiles) == len(names)
+
+
+def test_a_new_project_starts_with_the_playhead_at_zero(window):
+    win = window
+    x = round(win.view.geometry.x(2.0) - win.view.horizontalScrollBar().value())
+    QTest.mouseClick(win.ruler, LEFT, pos=QPoint(x, 10))
+    assert win.transport.where.text() != "0.000 s"
+    win.new_project("position")
+    assert win.view.scene().playhead_u == 0.0 and win.view.scene().cursor_u == 0.0
+    assert win.transport.where.text() == "0.0°"
+
+
+def test_a_dropped_tile_comes_up_in_the_waveform_editor_and_inspector(window):
+    from PySide6.QtCore import QPointF
+
+    from timeline.gui.gestures.palette_drop import tile_mime
+
+    from .helpers import send_drop, view_point
+
+    win = window
+    ramp = win.ids["ramp"]
+    send_drop(win, tile_mime(ramp), view_point(win, QPointF(3.0 * 200, 30)))
+    assert win.doc.selected_tile == ramp
+    assert win.editor.tile_id == ramp
+    assert set(win.inspector.boxes) == {"length", "start", "end"}

@@ -19,6 +19,7 @@ MODULES = (
     "timeline.bench.sim_speed",
     "timeline.bench.accumulation",
     "timeline.bench.edit_to_feel",
+    "timeline.bench.scale",
 )
 
 

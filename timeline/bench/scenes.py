@@ -19,6 +19,7 @@ class LargeSpec:
     clips: int = 20_000
     seconds: float = 600.0
     shapes: int = 200  # distinct clip shapes (tile, trim, stretch, fades); 0 = every clip its own
+    off_grid: bool = False  # starts anywhere (as dragged without snapping), not on sample times
 
 
 FULL = LargeSpec()
@@ -98,7 +99,8 @@ def large_project(spec: LargeSpec = FULL, seed: int = 0) -> Project:
         starts = np.sort(rng.uniform(0.0, spec.seconds - 6.0, per_track))
         clips = []
         for j, start in zip(chosen, starts, strict=True):
-            start = round(float(start) * rate) / rate  # snapped to the grid, as the editor does
+            if not spec.off_grid:
+                start = round(float(start) * rate) / rate  # snapped to the grid, as the editor does
             clips.append(
                 replace(
                     shapes[int(j)], id=f"c{serial}", start=start, gain=float(rng.uniform(0.1, 1))

@@ -10,14 +10,15 @@ import json
 import sys
 from dataclasses import asdict
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from timeline.cli.play_cmd import parse_option
-from timeline.devices import DeviceInfo, Hand, open_device
-from timeline.limits import servo
-from timeline.limits.actuators import PROFILES, actuator
-from timeline.limits.check import Report, check
-from timeline.projectfile import load
+from timeline.limits.actuators import PROFILES
 from timeline.quality import DEFAULT_QUALITY, PRESETS
+
+if TYPE_CHECKING:  # the limits, devices and mixer load when a design is checked, not for --help
+    from timeline.devices import DeviceInfo
+    from timeline.limits.check import Report
 
 FOUND = 3
 
@@ -39,6 +40,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def device_limits(info: DeviceInfo) -> dict[str, float]:
     """The limits a device's declarations imply (empty when it declares no dynamics)."""
+    from timeline.limits import servo
+
     dyn = info.dynamics
     if dyn is None or info.kind != "kinesthetic":
         return {}
@@ -67,6 +70,11 @@ def as_json(path: str, info: DeviceInfo, report: Report) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.devices import Hand, open_device
+    from timeline.limits.actuators import actuator
+    from timeline.limits.check import check
+    from timeline.projectfile import load
+
     project = load(args.project)
     chosen = actuator(args.actuator) if args.actuator else None
     options = dict(parse_option(text) for text in args.device_option)

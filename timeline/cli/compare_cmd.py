@@ -10,11 +10,7 @@ import json
 import sys
 from pathlib import Path
 
-from timeline.projectfile import load
 from timeline.quality import DEFAULT_QUALITY, PRESETS
-from timeline.similarity.compare import compare
-from timeline.similarity.distance import ALIKE
-from timeline.similarity.icons import variant_icons
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -27,6 +23,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.projectfile import load
+    from timeline.similarity.compare import compare
+    from timeline.similarity.distance import ALIKE
+    from timeline.similarity.icons import variant_icons
+
     projects = [(Path(path).stem, load(path)) for path in args.projects]
     icons = variant_icons(projects[0][1]) if len(projects) == 1 else projects
     result = compare(icons, args.quality)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import warnings
-from importlib.metadata import entry_points
 
 from timeline import plugins
 
@@ -16,6 +15,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def describe_devices() -> list[str]:
     """One line per device plugin (and per unit found); a plugin that finds nothing says so."""
+    from importlib.metadata import entry_points
+
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         loaded = plugins.load_group(plugins.DEVICES)

@@ -6,7 +6,6 @@ import argparse
 import sys
 
 from timeline.cli.options import positive
-from timeline.exporting import export_project_file
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -32,6 +31,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.exporting import export_project_file
+
     export_project_file(args.project, args.output, rate=args.rate)
     print(f"exported {args.project} -> {args.output}", file=sys.stderr)
     return 0

@@ -8,7 +8,7 @@ import time
 from typing import TextIO
 
 from timeline.cli.options import number, positive
-from timeline.importing import DEFAULT_KIND, import_into_project_file
+from timeline.kinds import DEFAULT_KIND
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -76,6 +76,8 @@ class ProgressBar:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.importing import import_into_project_file
+
     bar = ProgressBar(f"importing {args.file}")
     try:
         clip_ids = import_into_project_file(

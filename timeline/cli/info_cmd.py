@@ -5,9 +5,6 @@ from __future__ import annotations
 import argparse
 import json
 
-from timeline.info import describe, summary
-from timeline.projectfile import load
-
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("info", help="describe a project: tracks, clips, duration, layers, variants")
@@ -17,6 +14,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.info import describe, summary
+    from timeline.projectfile import load
+
     project = load(args.project)
     print(json.dumps(summary(project), indent=2) if args.json else describe(project))
     return 0

@@ -6,17 +6,17 @@ import argparse
 import math
 import sys
 from pathlib import Path
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from timeline.atomic import check_target
-from timeline.devices import Hand, Telemetry, open_device
 from timeline.errors import HapticTimelineError
-from timeline.kinds import track_kind
-from timeline.playback import Playback, prepare
-from timeline.projectfile import load
 from timeline.quality import DEFAULT_QUALITY, PRESETS
+
+if TYPE_CHECKING:  # numpy, the devices and the mixer load when a project is played, not for --help
+    import numpy as np
+
+    from timeline.devices import Telemetry
+    from timeline.playback import Playback
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -83,6 +83,10 @@ def parse_option(text: str) -> tuple[str, Any]:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.devices import Hand, open_device
+    from timeline.playback import prepare
+    from timeline.projectfile import load
+
     project = load(args.project)
     hand = Hand.parse(args.hand)
     if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
@@ -128,6 +132,8 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def _layer_axis(ax, t: np.ndarray, values: np.ndarray, kind_id: str) -> None:
+    from timeline.kinds import track_kind
+
     try:
         kind = track_kind(kind_id.split("+")[0])
         scale, unit, colour, label = kind.display_scale, kind.display_unit, kind.colour, kind.label
@@ -142,6 +148,7 @@ def plot_telemetry(
 ) -> None:
     """Write a PNG: each layer, the angle and the torque over time (position mode: and vs angle)."""
     import matplotlib
+    import numpy as np
 
     matplotlib.use("Agg")
     from matplotlib import pyplot as plt
@@ -191,6 +198,8 @@ def plot_telemetry(
 
 def _shade(ax, t: np.ndarray, mask: np.ndarray, colour: str, label: str) -> None:
     """Shade the time spans where mask is True."""
+    import numpy as np
+
     if not mask.any():
         return
     edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
@@ -202,6 +211,8 @@ def _shade(ax, t: np.ndarray, mask: np.ndarray, colour: str, label: str) -> None
 
 def _feel_map(ax, telemetry: Telemetry, playback: Playback) -> None:
     """Position mode: the torque table over angle, with the torque felt along the knob's path."""
+    import numpy as np
+
     program = playback.program
     table = program.table
     ax.plot(np.degrees(table.angles()), table.torque * 1e3, color="#f18f01", lw=1.2,

@@ -5,16 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import numpy as np
-
-from timeline.atomic import write_atomically
 from timeline.cli.options import add_range_options, parse_tracks
 from timeline.errors import HapticTimelineError
-from timeline.exporting import write_layers
-from timeline.formats import Layers
-from timeline.mixer import render
-from timeline.projectfile import load
+
+if TYPE_CHECKING:  # numpy and the mixer load when something is rendered, not for --help
+    from timeline.formats import Layers
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -26,6 +23,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def _write_npz(layers: Layers, path: Path) -> None:
+    import numpy as np
+
+    from timeline.atomic import write_atomically
+
     axis = "time" if layers.axis == "time" else "angle"
     positions = layers.start + np.arange(layers.length) / layers.rate
     columns = {k: np.asarray(v) for k, v in layers.columns.items()}
@@ -38,6 +39,11 @@ def _write_npz(layers: Layers, path: Path) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.exporting import write_layers
+    from timeline.formats import Layers
+    from timeline.mixer import render
+    from timeline.projectfile import load
+
     project = load(args.project)
     rate = project.rate if args.rate is None else args.rate
     start = args.start

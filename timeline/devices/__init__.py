@@ -9,20 +9,40 @@ Plugins are found by name through the `haptic_timeline.devices` entry point grou
 never imports a particular plugin.
 """
 
-from timeline.devices.device import Device, Progress, device_names, open_device
-from timeline.devices.dynamics import ACTUATOR_TYPES, Actuator, Dynamics
-from timeline.devices.errors import DeviceError, HandSpecError
-from timeline.devices.hand import DEFAULT_PUSH_MNM, DEFAULT_TURN_DEG_PER_S, HAND_MODES, Hand
-from timeline.devices.info import KINDS, DeviceInfo
-from timeline.devices.program import CoefficientBlock, PositionProgram, PositionTable, Program
-from timeline.devices.telemetry import (
-    TELEMETRY_COLUMNS,
-    LiveTelemetry,
-    Monitor,
-    StabilityFlag,
-    Telemetry,
-    merge_flags,
-)
+from importlib import import_module
+from typing import Any
+
+# Public names -> the submodule defining them, loaded on first use: the light ones (errors,
+# dynamics, hand, info) do not pull in numpy with the telemetry and programs.
+_EXPORTS = {
+    **dict.fromkeys(("Device", "Progress", "device_names", "open_device"), "device"),
+    **dict.fromkeys(("ACTUATOR_TYPES", "Actuator", "Dynamics"), "dynamics"),
+    **dict.fromkeys(("DeviceError", "HandSpecError"), "errors"),
+    **dict.fromkeys(("DEFAULT_PUSH_MNM", "DEFAULT_TURN_DEG_PER_S", "HAND_MODES", "Hand"), "hand"),
+    **dict.fromkeys(("KINDS", "DeviceInfo"), "info"),
+    **dict.fromkeys(("CoefficientBlock", "PositionProgram", "PositionTable", "Program"), "program"),
+    **dict.fromkeys(
+        (
+            "TELEMETRY_COLUMNS",
+            "LiveTelemetry",
+            "Monitor",
+            "StabilityFlag",
+            "Telemetry",
+            "merge_flags",
+        ),
+        "telemetry",
+    ),  # fmt: skip
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'timeline.devices' has no attribute {name!r}")
+    value = getattr(import_module(f"timeline.devices.{module}"), name)
+    globals()[name] = value
+    return value
+
 
 __all__ = [
     "ACTUATOR_TYPES",

@@ -93,6 +93,15 @@ class Document(QObject):
         self._prune_selection()
         self._emit_changed()
 
+    def go_to(self, index: int) -> None:
+        """Jump to a step of the history (Edit > History)."""
+        if index == self.history.index:
+            return
+        self.history.go_to(index)
+        self.message.emit(f"back to: {self.history.labels[index]}", "info")
+        self._prune_selection()
+        self._emit_changed()
+
     def reset(self, project: Project, path: Path | None) -> None:
         """Start over on another project (a fresh history, nothing selected)."""
         self.history = History(project)
@@ -121,8 +130,8 @@ class Document(QObject):
             self.selection_changed.emit()
 
     def _prune_selection(self) -> None:
-        present = {c.id for t in self.project.tracks for c in t.clips}
-        kept = [c for c in self.selected_clips if c in present]
+        tracks = self.project.tracks
+        kept = [c for c in self.selected_clips if any(c in t.clips_by_id for t in tracks)]
         tile = self.selected_tile if self.selected_tile in self.project.tiles else None
         if kept != self.selected_clips or tile != self.selected_tile:
             self.selected_clips, self.selected_tile = kept, tile

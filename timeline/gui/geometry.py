@@ -27,6 +27,15 @@ def axis_text(u: float, axis: str, spec: str = ".4g") -> str:
     return f"{value} s" if axis == "time" else f"{value}°"
 
 
+def gain_text(gain: float) -> str:
+    """A gain as a designer reads it: "-6.0 dB (x0.5)"; zero is "-inf dB (x0)"."""
+    if gain == 0:
+        return "-inf dB (x0)"
+    db = 20 * math.log10(abs(gain))
+    sign = ", inverted" if gain < 0 else ""
+    return f"{db:+.1f} dB (x{gain:.3g}{sign})"
+
+
 @dataclass
 class Geometry:
     """The mapping from the project axis to scene coordinates at the current zoom."""

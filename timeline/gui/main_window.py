@@ -6,7 +6,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from PySide6.QtCore import Qt
-from PySide6.QtGui import QAction, QCloseEvent, QKeySequence
+from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
 from PySide6.QtWidgets import (
     QFileDialog,
     QGridLayout,
@@ -21,18 +21,23 @@ from timeline import edits, importing, projectfile
 from timeline.errors import HapticTimelineError
 from timeline.formats import all_formats
 from timeline.model import Project
+from timeline.placement import into_gap
 
 from . import variants
+from .arrange import Arrange
 from .autosave import Autosaver, Recoverable, recoverable
+from .clipboard import ClipClipboard
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .findings_overlay import FindingsOverlay
+from .inspector import Inspector
 from .message_bar import MessageBar
 from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
 from .ruler import Ruler
 from .similarity_map import similarity_window
+from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
 from .transport import Transport
@@ -80,7 +85,10 @@ class MainWindow(QMainWindow):
         self.ruler = Ruler(self.view)
         self.palette = Palette(doc)
         self.editor = WaveformEditor(doc)
+        self.inspector = Inspector(doc)
         self.transport = Transport(self.player)
+        self.arrange = Arrange(doc, self.view, self.ruler, lambda: self.player.playing)
+        self.clipboard = ClipClipboard(doc, self.arrange.here)
         self.messages = MessageBar()
         self.view.verticalScrollBar().valueChanged.connect(
             self.headers.verticalScrollBar().setValue
@@ -91,6 +99,7 @@ class MainWindow(QMainWindow):
         self.transport.play_button.clicked.connect(self.play_stop)
         self.transport.hand_changed.connect(self._hand_changed)
         self.ruler.clicked.connect(self._ruler_clicked)
+        self.ruler.loop_dragged.connect(lambda: self.transport.loop.setChecked(True))
         self.messages.cancel_requested.connect(self.cancel_jobs)
 
         lanes = QWidget()
@@ -111,8 +120,9 @@ class MainWindow(QMainWindow):
         top.setSizes([320, 1080])
         bottom = QSplitter(Qt.Orientation.Horizontal)
         bottom.addWidget(self.editor)
+        bottom.addWidget(self.inspector)
         bottom.addWidget(self.transport)
-        bottom.setSizes([700, 700])
+        bottom.setSizes([560, 220, 620])
         main = QSplitter(Qt.Orientation.Vertical)
         main.addWidget(top)
         main.addWidget(bottom)
@@ -154,15 +164,32 @@ class MainWindow(QMainWindow):
         edit = bar.addMenu("&Edit")
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
+        self.history_menu = edit.addMenu("&History")
+        self.history_menu.aboutToShow.connect(lambda: fill_history(self.history_menu, self.doc))
         edit.addSeparator()
-        self.split_action = self._action(edit, "Spl&it at cursor", self.split, "Ctrl+I")
+        cut = self._action(edit, "Cu&t", self.clipboard.cut, QKeySequence.StandardKey.Cut)
+        copy = self._action(edit, "&Copy", self.clipboard.copy, QKeySequence.StandardKey.Copy)
+        self._action(
+            edit, "&Paste at playhead", self.clipboard.paste, QKeySequence.StandardKey.Paste
+        )
+        edit.addSeparator()
+        arrange = self.arrange
+        self.split_action = self._action(edit, "Spl&it at playhead", arrange.split_here, "S")
+        self.split_action.setShortcuts([QKeySequence("S"), QKeySequence("Ctrl+I")])
         self.clip_actions = [
+            cut,
+            copy,
             self.split_action,
-            self._action(edit, "&Duplicate", self.duplicate, "Ctrl+D"),
+            self._action(edit, "&Duplicate into free space", arrange.duplicate, "Ctrl+D"),
             self._action(edit, "De&lete", self.delete, QKeySequence.StandardKey.Delete),
+            self._action(edit, "Nudge &left one grid step", lambda: arrange.nudge(-1), "Alt+Left"),
+            self._action(edit, "Nudge &right one grid step", lambda: arrange.nudge(1), "Alt+Right"),
             self._action(edit, "In&vert about mirror line", self.invert, "Ctrl+Shift+M"),
             self._action(edit, "Re&verse", self.reverse, "Ctrl+R"),
-            self._action(edit, "&Merge into a palette tile", self.merge, "Ctrl+M"),
+            self._action(edit, "&Merge in place", lambda: self.merge(True), "Ctrl+M"),
+            self._action(
+                edit, "Merge into a &palette tile", lambda: self.merge(False), "Ctrl+Alt+M"
+            ),
         ]
         fades = edit.addMenu("Fade &shape")
         for shape in ("linear", "equal-power", "exponential", "s-curve"):
@@ -179,13 +206,20 @@ class MainWindow(QMainWindow):
 
         play = bar.addMenu("&Transport")
         self._action(play, "&Play / stop", self.play_stop, "Space")
-        self._action(play, "&Loop", self.transport.loop.toggle, "L")
+        self._action(play, "&Loop (the loop region if one is set)", self.transport.loop.toggle, "L")
+        play.addSeparator()
+        self._action(play, "Add &marker at playhead", arrange.add_marker, "M")
+        self._action(play, "&Next marker", lambda: arrange.jump(1), "]")
+        self._action(play, "P&revious marker", lambda: arrange.jump(-1), "[")
 
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
         self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
         self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
+        var.addSeparator()
+        self.variants_menu = var
+        var.aboutToShow.connect(lambda: fill_variants(var, self.doc, self.switch_variant))
 
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
@@ -239,29 +273,6 @@ class MainWindow(QMainWindow):
 
         self.doc.apply(label, all_of)
 
-    def duplicate(self) -> None:
-        """Copy the selected clips, each right after itself."""
-        self._each("duplicate", lambda p, c: edits.duplicate_clip(p, c)[0])
-
-    def split(self) -> None:
-        """Split the selected clips (or the clips under the cursor) at the edit cursor."""
-        at = self.view.scene().cursor_u
-        project = self.doc.project
-        chosen = self.doc.selected_clips or [c.id for t in project.tracks for c in t.clips]
-        ids = [
-            i for i in chosen if project.find_clip(i)[1].start < at < project.find_clip(i)[1].end
-        ]
-        if not ids:
-            self.messages.show_message("place the cursor inside a clip to split it", "error")
-            return
-
-        def split_all(project: Project) -> Project:
-            for clip_id in ids:
-                project, _ = edits.split_clip(project, clip_id, at)
-            return project
-
-        self.doc.apply("split", split_all)
-
     def delete(self) -> None:
         """Remove the selected clips."""
         ids = list(self.doc.selected_clips)
@@ -286,13 +297,18 @@ class MainWindow(QMainWindow):
 
         self._each(f"{shape} fades", shaped)
 
-    def merge(self) -> None:
-        """Superimpose the selected clips into one new tile in the Scratch tab."""
+    def merge(self, in_place: bool = True) -> None:
+        """Superimpose the selected clips into one new tile in the Scratch tab; in place, one
+        clip of it replaces them (the design renders the same)."""
         ids = list(self.doc.selected_clips)
-        tile_id = self.doc.apply("merge to palette", edits.merge_clips, ids, replace_clips=False)
+        label = "merge in place" if in_place else "merge to palette"
+        tile_id = self.doc.apply(label, edits.merge_clips, ids, replace_clips=in_place)
         if tile_id:
             self.doc.select_tile(tile_id)
-            self.messages.show_message(f"merged {len(ids)} clips into a new tile in Scratch")
+            where = "; one clip of it replaces them" if in_place else ""
+            self.messages.show_message(
+                f"merged {len(ids)} clips into a new tile in Scratch{where} (Ctrl+Z undoes)"
+            )
 
     def select_all(self) -> None:
         self.doc.select_clips([c.id for t in self.doc.project.tracks for c in t.clips])
@@ -312,6 +328,11 @@ class MainWindow(QMainWindow):
         """Switch to the next variant, to compare by feel."""
         if self.doc.apply("switch variant", variants.switch_next):
             self.messages.show_message(f"now playing variant {self.doc.project.active_variant}")
+
+    def switch_variant(self, name: str) -> None:
+        """Switch to a named variant (from the Variants menu)."""
+        if self.doc.apply("switch variant", edits.switch_variant, name):
+            self.messages.show_message(f"now playing variant {name}")
 
     def _range_dropped(self, tab: str, mime) -> None:
         tile_id, a, b = read_range(mime)
@@ -334,9 +355,13 @@ class MainWindow(QMainWindow):
             if not tracks:
                 self.messages.show_message("select clips on the tracks to play", "error")
                 return
+        loop = self.transport.loop.isChecked()
         start = self.view.scene().cursor_u if self.view.scene().cursor_u < project.duration else 0.0
+        stop = None
+        if loop and project.loop is not None:
+            start, stop = project.loop.start, project.loop.stop
         self.transport.scope.clear()
-        self.player.play(project, start, None, self.transport.loop.isChecked(), tracks)
+        self.player.play(project, start, stop, loop, tracks)
         self.transport.show_playing(self.player.playing)
 
     def _hand_changed(self, _hand) -> None:
@@ -356,6 +381,7 @@ class MainWindow(QMainWindow):
 
     def _follow_playhead(self, u: float) -> None:
         self.view.scene().set_playhead(u)
+        self.view.keep_visible(u)
         self.ruler.update()
         self.transport.show_position(u, self.doc.project.axis)
 
@@ -374,8 +400,11 @@ class MainWindow(QMainWindow):
         self.player.stop()
         self.autosaver.discard()
         self.doc.reset(project, path)
+        self.view.scene().set_playhead(0.0)  # the old playhead means nothing in another project
+        self.view.scene().set_cursor(0.0)
+        self.transport.scope.clear()
         self.view.fit()
-        self.transport.show_position(self.view.scene().playhead_u, project.axis)
+        self.transport.show_position(0.0, project.axis)
 
     def open_path(self, path: Path) -> bool:
         """Open a project file (after asking about unsaved changes)."""
@@ -415,7 +444,10 @@ class MainWindow(QMainWindow):
         return self.save_to(self.doc.path)
 
     def save_as_dialog(self) -> bool:
-        path, _ = QFileDialog.getSaveFileName(self, "Save project", "", "Haptic timeline (*.htl)")
+        start = str(self.doc.path) if self.doc.path else ""
+        path, _ = QFileDialog.getSaveFileName(
+            self, "Save project", start, "Haptic timeline (*.htl)"
+        )
         if not path:
             return False
         path = Path(path if path.endswith(".htl") else path + ".htl")
@@ -430,10 +462,20 @@ class MainWindow(QMainWindow):
             self, "Import", "", f"Importable ({self._extensions('reads')})"
         )
         if paths:
-            track = next((t for t in self.doc.project.tracks), None)
-            self.import_files(
-                [Path(p) for p in paths], track.id if track else "", self.view.scene().cursor_u
-            )
+            self.import_files([Path(p) for p in paths], self._import_track(), self.arrange.here())
+
+    def _import_track(self) -> str:
+        """Where an import goes: the selected clip's track, else the lane under the pointer,
+        else the first track."""
+        project = self.doc.project
+        if self.doc.selected_clips:
+            return project.find_clip(self.doc.selected_clips[0])[0].id
+        pointer = self.view.viewport().mapFromGlobal(QCursor.pos())
+        if self.view.viewport().rect().contains(pointer):
+            track = self.view.track_at(self.view.mapToScene(pointer).y())
+            if track is not None:
+                return track.id
+        return project.tracks[0].id if project.tracks else ""
 
     def import_files(self, paths: list[Path], track_id: str, at: float) -> None:
         """Import files in the background onto a track (its kind gives them meaning)."""
@@ -453,6 +495,7 @@ class MainWindow(QMainWindow):
         chosen = track_id if any(t.id == track_id for t in project.tracks) else None
         try:
             project, clip_ids = importing.place(project, imported, at=at, track_id=chosen)
+            project = into_gap(project, clip_ids, at)
         except HapticTimelineError as exc:
             self.messages.show_message(str(exc), "error")
             return

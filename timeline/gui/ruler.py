@@ -1,35 +1,74 @@
-"""The ruler above the lanes: seconds, or degrees in position mode; click to place the cursor."""
+"""The ruler above the lanes: seconds, or degrees in position mode, with markers and the loop.
+
+Click to place the playhead and cursor; drag to set the loop region (REAPER's ruler drag); drag
+a marker's flag to move it; right-click a marker to rename or delete it, or the loop to clear it.
+"""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
-from PySide6.QtCore import QPointF, Qt, Signal
-from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPen
-from PySide6.QtWidgets import QWidget
+from PySide6.QtCore import QPointF, QRectF, Qt, Signal
+from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPen, QPolygonF
+from PySide6.QtWidgets import QInputDialog, QMenu, QWidget
 
-from .geometry import display_factor, display_unit, format_tick, nice_step
+from timeline import markers
+
+from .geometry import axis_text, display_factor, display_unit, format_tick, nice_step
 from .timeline_view import TimelineView
 
-HEIGHT = 26
+HEIGHT = 40
+TICKS_TOP = 20  # marker flags and the loop band above, ticks and labels below
+FLAG_PX = 6.0
+LOOP_COLOUR = QColor(56, 160, 90, 70)
+MARKER_COLOUR = QColor("#c07000")
 
 
 class Ruler(QWidget):
-    """Tick marks and labels that follow the view's zoom and scroll."""
+    """Tick marks and labels that follow the view's zoom and scroll; markers and loop region."""
 
     clicked = Signal(float)  # axis position the playhead and cursor moved to
+    loop_dragged = Signal()
 
     def __init__(self, view: TimelineView) -> None:
         super().__init__()
         self.view = view
+        self.doc = view.doc
         self.setFixedHeight(HEIGHT)
+        self.setMouseTracking(True)
+        self.ask_name: Callable[[str], str | None] = self._ask_name
+        self._press: float | None = None  # x where the left button went down
+        self._marker: int | None = None  # index of the marker being dragged
+        self._key: object = None
+        self._base = None
         view.zoomed.connect(self.update)
-        view.doc.changed.connect(self.update)
+        self.doc.changed.connect(self.update)
+
+    # --- mapping ---------------------------------------------------------------------------
+
+    def x_of(self, u: float) -> float:
+        return self.view.geometry.x(u) - self.view.horizontalScrollBar().value()
+
+    def u_of(self, x: float) -> float:
+        return max(0.0, self.view.geometry.u(x + self.view.horizontalScrollBar().value()))
+
+    def marker_at(self, x: float, y: float) -> int | None:
+        """The marker whose flag is under a widget point."""
+        if y > TICKS_TOP:
+            return None
+        for i, m in enumerate(self.doc.project.markers):
+            if abs(self.x_of(m.at) - x) <= FLAG_PX:
+                return i
+        return None
+
+    # --- painting --------------------------------------------------------------------------
 
     def paintEvent(self, event) -> None:
         painter = QPainter(self)
         painter.fillRect(self.rect(), QColor("#fafaf8"))
-        axis = self.view.doc.project.axis
+        project = self.doc.project
+        axis = project.axis
         g = self.view.geometry
         factor = display_factor(axis)
         step = nice_step(g.px_per_unit / factor)
@@ -39,26 +78,137 @@ class Ruler(QWidget):
         font = QFont()
         font.setPointSizeF(8.0)
         painter.setFont(font)
+        if project.loop is not None:
+            a, b = self.x_of(project.loop.start), self.x_of(project.loop.stop)
+            painter.fillRect(QRectF(a, 0, b - a, HEIGHT), LOOP_COLOUR)
         for i in range(first, last + 1):
             x = g.x(i * step / factor) - left
             painter.setPen(QPen(QColor("#555555"), 1))
             painter.drawLine(QPointF(x, HEIGHT - 9), QPointF(x, HEIGHT))
-            painter.drawText(QPointF(x + 3, 12), format_tick(i * step, step) + display_unit(axis))
+            painter.drawText(
+                QPointF(x + 3, HEIGHT - 10), format_tick(i * step, step) + display_unit(axis)
+            )
             for sub in range(1, 4):
                 xs = x + g.x(step / factor) * sub / 4
                 painter.setPen(QPen(QColor("#aaaaaa"), 1))
                 painter.drawLine(QPointF(xs, HEIGHT - 4), QPointF(xs, HEIGHT))
         painter.setPen(QPen(QColor("#bbbbbb"), 1))
         painter.drawLine(0, HEIGHT - 1, self.width(), HEIGHT - 1)
-        x = g.x(self.view.scene().playhead_u) - left
+        for m in project.markers:
+            x = self.x_of(m.at)
+            painter.setPen(QPen(MARKER_COLOUR, 1))
+            painter.setBrush(MARKER_COLOUR)
+            painter.drawPolygon(QPolygonF([QPointF(x, 2), QPointF(x + FLAG_PX, 7), QPointF(x, 12)]))
+            painter.drawLine(QPointF(x, 2), QPointF(x, HEIGHT))
+            painter.drawText(QPointF(x + FLAG_PX + 2, 12), m.name)
+        x = self.x_of(self.view.scene().playhead_u)
         painter.setPen(QPen(QColor("#d00000"), 2))
         painter.drawLine(QPointF(x, 0), QPointF(x, HEIGHT))
 
+    # --- mouse -----------------------------------------------------------------------------
+
     def mousePressEvent(self, event: QMouseEvent) -> None:
-        if event.button() == Qt.MouseButton.LeftButton:
-            x = event.position().x() + self.view.horizontalScrollBar().value()
-            u = max(0.0, self.view.geometry.u(x))
-            self.view.scene().set_cursor(u)
-            self.view.scene().set_playhead(u)
-            self.update()
-            self.clicked.emit(u)
+        if event.button() != Qt.MouseButton.LeftButton:
+            return
+        pos = event.position()
+        self._press = pos.x()
+        self._marker = self.marker_at(pos.x(), pos.y())
+        self._key, self._base = object(), self.doc.project
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        pos = event.position()
+        if self._press is None:
+            i = self.marker_at(pos.x(), pos.y())
+            self.setToolTip(self._tip(i, pos.x()))
+            return
+        if abs(pos.x() - self._press) < 3:
+            return
+        u0, u = self.u_of(self._press), self.u_of(pos.x())
+        if self._marker is not None:
+            self.doc.apply(
+                "move marker", markers.move_marker, self._marker, u,
+                base=self._base, merge_key=self._key,
+            )  # fmt: skip
+            self.doc.message.emit(f"marker at {axis_text(u, self.doc.project.axis)}", "info")
+        else:
+            self.doc.apply(
+                "loop region", markers.set_loop, u0, u, base=self._base, merge_key=self._key
+            )
+            loop = self.doc.project.loop
+            if loop is not None:
+                axis = self.doc.project.axis
+                length = axis_text(loop.stop - loop.start, axis)
+                self.doc.message.emit(
+                    f"loop {axis_text(loop.start, axis)} to {axis_text(loop.stop, axis)}"
+                    f" ({length})",
+                    "info",
+                )
+            self.loop_dragged.emit()
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        if event.button() != Qt.MouseButton.LeftButton or self._press is None:
+            return
+        press, self._press = self._press, None
+        if abs(event.position().x() - press) >= 3:
+            return
+        u = self.u_of(event.position().x())
+        if self._marker is not None:
+            u = self.doc.project.markers[self._marker].at
+        self.place(u)
+
+    def place(self, u: float) -> None:
+        """Move the playhead and the edit cursor to an axis position."""
+        self.view.scene().set_cursor(u)
+        self.view.scene().set_playhead(u)
+        self.update()
+        self.clicked.emit(u)
+
+    def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:
+        i = self.marker_at(event.position().x(), event.position().y())
+        if i is not None:
+            self.rename(i)
+
+    def contextMenuEvent(self, event) -> None:
+        menu = self.menu_at(event.pos().x(), event.pos().y())
+        if not menu.isEmpty():
+            menu.popup(event.globalPos())
+
+    def menu_at(self, x: float, y: float) -> QMenu:
+        """The right-click menu for a ruler point: the marker there, and the loop region."""
+        menu = QMenu(self)
+        i = self.marker_at(x, y)
+        if i is not None:
+            name = self.doc.project.markers[i].name
+            menu.addAction(f"Rename marker {name}…", lambda: self.rename(i))
+            menu.addAction(
+                f"Delete marker {name}",
+                lambda: self.doc.apply("delete marker", markers.remove_marker, i),
+            )
+        if self.doc.project.loop is not None:
+            menu.addAction(
+                "Clear loop region", lambda: self.doc.apply("clear loop", markers.set_loop, None)
+            )
+        return menu
+
+    def rename(self, index: int) -> None:
+        """Ask for a marker's new name and apply it (one undo step)."""
+        name = self.ask_name(self.doc.project.markers[index].name)
+        if name:
+            self.doc.apply("rename marker", markers.rename_marker, index, name)
+
+    def _ask_name(self, current: str) -> str | None:
+        name, ok = QInputDialog.getText(self, "Marker", "Name:", text=current)
+        return name if ok else None
+
+    def _tip(self, index: int | None, x: float) -> str:
+        axis = self.doc.project.axis
+        if index is not None:
+            m = self.doc.project.markers[index]
+            return (
+                f"marker {m.name} at {axis_text(m.at, axis)}: drag to move, "
+                "double-click to rename, right-click to delete"
+            )
+        return (
+            f"{axis_text(self.u_of(x), axis)}: click to move the playhead, "
+            "drag to set the loop region"
+        )

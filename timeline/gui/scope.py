@@ -18,6 +18,7 @@ class Scope(QWidget):
         self.setMinimumSize(260, 90)
         self.theta = np.zeros(0)
         self.tau = np.zeros(0)
+        self.waiting = False  # playing, and the device has not reported yet
 
     def clear(self) -> None:
         self.theta, self.tau = np.zeros(0), np.zeros(0)
@@ -57,4 +58,9 @@ class Scope(QWidget):
             painter.drawText(QPointF(6, top + 13), f"{name} {last:+.2f}{unit}  (±{peak:.2f})")
         if not self.tau.size:
             painter.setPen(QColor("#8a949e"))
-            painter.drawText(self.rect(), 0x84, "Press Space to play on the device and feel it")
+            hint = (
+                "Starting the device…"
+                if self.waiting
+                else "Press Space to play on the device and feel it"
+            )
+            painter.drawText(self.rect(), 0x84, hint)

@@ -3,19 +3,48 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
+from dataclasses import dataclass
 
 from PySide6.QtCore import QLineF, QRectF
 from PySide6.QtGui import QColor, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsLineItem, QGraphicsScene
 
 from timeline.kinds import track_kind
-from timeline.model import Project
+from timeline.model import Project, Track
+from timeline.placement import overlaps
+from timeline.tiles import Tile
 
 from .clip_item import ClipItem
 from .geometry import Geometry, display_factor, nice_step
 
 LANE_COLOURS = (QColor("#f4f4f2"), QColor("#ebebe8"))
 EXTRA_LANE_ROOM = 40
+
+
+@dataclass(frozen=True)
+class _TrackShown:
+    """The track state a lane's clip items were last updated from."""
+
+    track: Track
+    lane: int
+    selected: frozenset[str]
+    view: tuple  # zoom, lane height, project rate and whether the track is muted
+    tiles: dict[str, Tile]  # tile id -> the tile object its clips were drawn from
+
+    @property
+    def clip_ids(self) -> set[str]:
+        return set(self.track.clips_by_id)
+
+    def same(self, track: Track, lane: int, selected: frozenset[str], view: tuple, tiles) -> bool:
+        """True when nothing the items show changed (tiles None: the library is unchanged)."""
+        return (
+            track is self.track
+            and lane == self.lane
+            and selected == self.selected
+            and view == self.view
+            and (tiles is None or all(tiles.get(i) is tile for i, tile in self.tiles.items()))
+        )
 
 
 class TimelineScene(QGraphicsScene):
@@ -25,6 +54,8 @@ class TimelineScene(QGraphicsScene):
         super().__init__()
         self.geometry = geometry
         self.items_by_clip: dict[str, ClipItem] = {}
+        self._shown: dict[str, _TrackShown] = {}  # track id -> what its items show
+        self._tiles: object = None  # the tile library the items were last updated from
         self.project: Project | None = None
         self.selection: set[str] = set()
         self.min_width = 800.0
@@ -40,30 +71,95 @@ class TimelineScene(QGraphicsScene):
         self.cursor_u = 0.0
 
     def sync(self, project: Project, selection: list[str]) -> None:
-        """Show a project state."""
+        """Show a project state, touching only the clip items of tracks that changed.
+
+        A track is unchanged when it is the same object (edits share untouched tracks) at the
+        same lane, its tiles are the same objects, and its selected clips and the zoom are the
+        same; its items are then left alone, so a drag on 20,000 clips updates a few items.
+        """
         self.project, self.selection = project, set(selection)
-        seen = set()
+        view = (self.geometry.px_per_unit, self.geometry.lane_height, project.rate)
+        # edits that leave the tile library alone share its map, so its tiles need no check
+        tiles = None if project.tiles is self._tiles else project.tiles
+        self._tiles = project.tiles
+        selected_by_track: dict[str, set[str]] = {}
+        for clip_id in self.selection:
+            item = self.items_by_clip.get(clip_id)
+            if item is not None:
+                selected_by_track.setdefault(item.track_id, set()).add(clip_id)
+        shown: dict[str, _TrackShown] = {}
+        soloing = any(t.solo for t in project.tracks)
         for lane, track in enumerate(project.tracks):
-            colour = track_kind(track.kind).colour
-            for clip in track.clips:
-                item = self.items_by_clip.get(clip.id)
-                if item is None:
-                    item = self.items_by_clip[clip.id] = ClipItem(self.geometry)
-                    self.addItem(item)
-                item.update_from(
-                    clip,
-                    project.tile(clip.tile_id),
-                    track.id,
-                    lane,
-                    colour,
-                    project.rate,
-                    clip.id in self.selection,
-                )
-                seen.add(clip.id)
-        for clip_id in list(self.items_by_clip):
-            if clip_id not in seen:
-                self.removeItem(self.items_by_clip.pop(clip_id))
+            selected = frozenset(selected_by_track.get(track.id, ()))
+            before = self._shown.get(track.id)
+            muted = (not track.solo) if soloing else track.mute
+            track_view = (*view, muted)  # a mute or solo elsewhere dims or lights this lane
+            if before is not None and before.same(track, lane, selected, track_view, tiles):
+                shown[track.id] = before
+                continue
+            shown[track.id] = self._show_track(
+                project, track, lane, track_view, before, tiles is None
+            )
+            if before is not None:
+                self._drop_items(before.clip_ids - shown[track.id].clip_ids, track.id)
+        for track_id in self._shown.keys() - shown.keys():
+            self._drop_items(self._shown[track_id].clip_ids, track_id)
+        self._shown = shown
         self.refit()
+
+    def _show_track(
+        self,
+        project: Project,
+        track: Track,
+        lane: int,
+        view: tuple,
+        before: _TrackShown | None,
+        same_tiles: bool,
+    ) -> _TrackShown:
+        """Update the items of a changed track; clips the edit did not touch are skipped."""
+        colour = track_kind(track.kind).colour
+        tiles: dict[str, Tile] = {}
+        unchanged: dict = {}
+        if before is not None and same_tiles and before.lane == lane and before.view == view:
+            unchanged = before.track.clips_by_id
+            tiles = dict(before.tiles)
+        covered = overlaps(project, track.id)
+        muted = view[-1]
+        for clip in track.clips:
+            if (
+                unchanged.get(clip.id) is clip
+                and (clip.id in self.selection) == (clip.id in before.selected)
+                and self.items_by_clip[clip.id].covered == covered.get(clip.id, ())
+            ):
+                continue
+            item = self.items_by_clip.get(clip.id)
+            if item is None:
+                item = self.items_by_clip[clip.id] = ClipItem(self.geometry)
+                self.addItem(item)
+            tile = tiles.get(clip.tile_id)
+            if tile is None:
+                tile = tiles[clip.tile_id] = project.tile(clip.tile_id)
+            item.update_from(
+                clip,
+                tile,
+                track.id,
+                lane,
+                colour,
+                project.rate,
+                clip.id in self.selection,
+                muted,
+                covered.get(clip.id, ()),
+                project.axis,
+            )
+        selected = frozenset(c.id for c in track.clips if c.id in self.selection)
+        return _TrackShown(track, lane, selected, view, tiles)
+
+    def _drop_items(self, clip_ids: Iterable[str], track_id: str) -> None:
+        """Remove the items of clips that left a track (unless another track now shows them)."""
+        for clip_id in clip_ids:
+            item = self.items_by_clip.get(clip_id)
+            if item is not None and item.track_id == track_id:
+                self.removeItem(self.items_by_clip.pop(clip_id))
 
     def refit(self) -> None:
         """Size the scene to the lanes and the project (plus room to drag past the end)."""
@@ -107,6 +203,10 @@ class TimelineScene(QGraphicsScene):
         last = math.ceil(g.u(rect.right()) / step)
         painter.setPen(QPen(QColor(0, 0, 0, 25), 1))
         bottom = g.lane_top(lanes)
+        loop = self.project.loop
+        if loop is not None:
+            band = QRectF(g.x(loop.start), 0, g.x(loop.stop) - g.x(loop.start), bottom)
+            painter.fillRect(band.intersected(rect), QColor(56, 160, 90, 30))
         for i in range(first, last + 1):
             x = g.x(i * step)
             painter.drawLine(QLineF(x, 0, x, bottom))

@@ -4,14 +4,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtCore import QPointF, Qt, Signal
+from PySide6.QtCore import QPoint, QPointF, Qt, Signal
 from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QWheelEvent
-from PySide6.QtWidgets import QGraphicsView, QMenu
+from PySide6.QtWidgets import QGraphicsView, QLabel, QMenu
 
 from timeline.model import Track
 
+from . import lane_scale
 from .clip_item import ClipItem
 from .document import Document
+from .fade_menu import fade_shape_menu
 from .geometry import Geometry
 from .gestures.amplitude import AmplitudeGesture
 from .gestures.base import Gesture
@@ -22,7 +24,7 @@ from .gestures.pivot import PivotGesture
 from .gestures.rubber_band import RubberBandGesture
 from .gestures.stretch import StretchGesture
 from .gestures.trim import TrimGesture
-from .snapping import clip_edges, snap
+from .snapping import EdgeIndex, snap
 from .timeline_scene import TimelineScene
 
 SNAP_PX = 8.0
@@ -52,8 +54,15 @@ class TimelineView(QGraphicsView):
         super().__init__(self._scene)
         self.doc = doc
         self.snapping = True
+        self._edges = EdgeIndex()
         self.gesture: Gesture | None = None
         self.drop: PaletteDrop | None = None
+        self.menu: QMenu | None = None  # the last context menu shown
+        self.readout = QLabel(self.viewport())
+        self.readout.setStyleSheet(
+            "background: rgba(255, 255, 230, 235); border: 1px solid #999; padding: 1px 4px;"
+        )
+        self.readout.hide()
         self.setAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
         self.setRenderHint(QPainter.RenderHint.Antialiasing)
         self.setViewportUpdateMode(QGraphicsView.ViewportUpdateMode.MinimalViewportUpdate)
@@ -97,8 +106,8 @@ class TimelineView(QGraphicsView):
         """Snap an axis position to clip edges or the grid, if snapping is on."""
         if not self.snapping:
             return u
-        edges = clip_edges(self.doc.project, dragged)
-        return snap(u, edges, self.scene().grid_step(), self.geometry.u(SNAP_PX))
+        nearest = self._edges.nearest(self.doc.project, u, dragged)
+        return snap(u, [nearest], self.scene().grid_step(), self.geometry.u(SNAP_PX))
 
     # --- zoom and scroll -------------------------------------------------------------------
 
@@ -121,6 +130,27 @@ class TimelineView(QGraphicsView):
         self.horizontalScrollBar().setValue(0)
         self.zoomed.emit()
 
+    def keep_visible(self, u: float) -> None:
+        """Page the view so an axis position (the playing playhead) stays on screen."""
+        bar = self.horizontalScrollBar()
+        x, width = self.geometry.x(u), self.viewport().width()
+        if not bar.value() <= x <= bar.value() + width:
+            bar.setValue(int(x - 0.1 * width))
+
+    def drawBackground(self, painter: QPainter, rect) -> None:
+        super().drawBackground(painter, rect)
+        lane_scale.draw_grid(painter, self.geometry, self.doc.project, rect)
+
+    def drawForeground(self, painter: QPainter, rect) -> None:
+        visible = self.mapToScene(self.viewport().rect()).boundingRect()
+        lane_scale.draw_labels(painter, self.geometry, self.doc.project, visible)
+
+    def scrollContentsBy(self, dx: int, dy: int) -> None:
+        super().scrollContentsBy(dx, dy)
+        if dx:
+            self.viewport().update()  # the scale labels stay at the left edge
+        self.zoomed.emit()
+
     def wheelEvent(self, event: QWheelEvent) -> None:
         if event.modifiers() & Qt.KeyboardModifier.ControlModifier:
             steps = event.angleDelta().y() / 120
@@ -134,11 +164,16 @@ class TimelineView(QGraphicsView):
             return
         super().wheelEvent(event)
 
-    def scrollContentsBy(self, dx: int, dy: int) -> None:
-        super().scrollContentsBy(dx, dy)
-        self.zoomed.emit()
-
     # --- mouse -----------------------------------------------------------------------------
+
+    def show_readout(self, text: str, scene_pos: QPointF) -> None:
+        """A small label of numbers beside the mouse during a drag (time, length, gain, ...)."""
+        self.readout.setText(text)
+        self.readout.adjustSize()
+        at = self.mapFromScene(scene_pos) + QPoint(14, 14)
+        room = self.viewport().width() - self.readout.width() - 2
+        self.readout.move(min(at.x(), max(0, room)), at.y())
+        self.readout.show()
 
     def item_at(self, pos: QPointF) -> ClipItem | None:
         for item in self.items(pos.toPoint()):
@@ -202,15 +237,22 @@ class TimelineView(QGraphicsView):
             return
         gesture, self.gesture = self.gesture, None
         gesture.release(self.mapToScene(event.position().toPoint()))
+        self.readout.hide()
         self.gesture_finished.emit()
 
     def contextMenuEvent(self, event) -> None:
         item = self.item_at(QPointF(event.pos()))
+        if item is not None:
+            zone = item.zone(item.mapFromScene(self.mapToScene(event.pos())))
+            if zone.startswith("fade-"):
+                self.menu = fade_shape_menu(self.doc, item.clip.id, zone[5:], self)
+                self.menu.popup(event.globalPos())
+                return
         if item is not None and item.clip.id not in self.doc.selected_clips:
             self.doc.select_clips([item.clip.id])
         if item is not None:
             self.scene().set_cursor(self.geometry.u(self.mapToScene(event.pos()).x()))
-        menu = QMenu(self)
+        menu = self.menu = QMenu(self)
         self.context_requested.emit(menu)
         if not menu.isEmpty():
             menu.popup(event.globalPos())

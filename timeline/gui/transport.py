@@ -107,6 +107,8 @@ class Transport(QWidget):
     def show_playing(self, playing: bool) -> None:
         """Show the Play button's state."""
         self.play_button.setText("■ Stop" if playing else "▶ Play")
+        self.scope.waiting = playing
+        self.scope.update()
 
     def show_position(self, u: float, axis: str) -> None:
         """Show the playhead position in seconds, or degrees in a position project."""

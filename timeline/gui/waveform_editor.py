@@ -4,6 +4,7 @@ values in numeric boxes, and a range that can be dragged (or sent) to the palett
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 from PySide6.QtCore import QEvent, QMimeData, QPointF, QRectF, Qt
@@ -18,12 +19,15 @@ from PySide6.QtWidgets import (
 )
 
 from timeline import tile_edits
+from timeline.model import Track
 from timeline.tiles import SplineTile, Tile
 
 from .clip_shape import tile_samples
 from .document import Document
 from .geometry import axis_text, display_factor
+from .lane_scale import full_scale_text
 from .palette import RANGE_MIME
+from .tile_editing import edit_tile
 
 PICK_PX = 8.0
 MARGIN = 10.0
@@ -101,8 +105,7 @@ class Canvas(QWidget):
         data, rate = tile_samples(tile, self.editor.doc.project.rate)
         peak = max(1.0, float(np.abs(data).max()))
         self.span = (-peak * 1.1, peak * 1.1)
-        painter.setPen(QPen(QColor("#dddddd"), 1))
-        painter.drawLine(QPointF(0, self.y_of(0)), QPointF(self.width(), self.y_of(0)))
+        self._paint_scale(painter, peak)
         count = max(2, self.width() - int(2 * MARGIN))
         idx = np.linspace(0, len(data) - 1, count)
         values = np.interp(idx, np.arange(len(data)), data)
@@ -125,6 +128,31 @@ class Canvas(QWidget):
             QPointF(MARGIN + 2, 12),
             f"{tile.name} · {axis_text(tile.duration, self.editor.doc.project.axis)}",
         )
+
+    def _paint_scale(self, painter: QPainter, peak: float) -> None:
+        """Grid lines at 0, ±½ and ±1 of the peak, labelled in tile units and, for the selected
+        clip's track, in its display unit (what 1.0 means there)."""
+        track = self.editor.track()
+        font = QFont()
+        font.setPointSizeF(7.0)
+        painter.setFont(font)
+        top = nice_level(peak)
+        for value in (top, top / 2, 0.0, -top / 2, -top):
+            y = self.y_of(value)
+            painter.setPen(QPen(QColor("#c8c8c8" if value == 0 else "#ececec"), 1))
+            painter.drawLine(QPointF(0, y), QPointF(self.width(), y))
+            if value in (top, 0.0, -top):
+                text = f"{value:+.3g}" if value else "0"
+                if track is not None and value:
+                    text += f" = {full_scale_text(track, value)} on {track.name}"
+                painter.setPen(QColor("#777777"))
+                painter.drawText(
+                    QPointF(
+                        self.width() - MARGIN - 4 - painter.fontMetrics().horizontalAdvance(text),
+                        y - 2,
+                    ),
+                    text,
+                )
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         if self.editor.tile is None or event.button() != Qt.MouseButton.LeftButton:
@@ -152,10 +180,9 @@ class Canvas(QWidget):
         if self.selecting:
             self.editor.set_range(self.editor.range[0], self.t_of(pos.x()))
         elif self.dragging is not None:
-            index = self.editor.doc.apply(
+            index = self.editor.apply(
                 "move spline point",
                 _move_keep_index,
-                self.editor.tile_id,
                 self.dragging,
                 self.t_of(pos.x()),
                 self.v_of(pos.y()),
@@ -175,10 +202,9 @@ class Canvas(QWidget):
         if self.editor.tile is None:
             return
         pos = event.position()
-        index = self.editor.doc.apply(
+        index = self.editor.apply(
             "add spline point",
             tile_edits.add_point,
-            self.editor.tile_id,
             self.t_of(pos.x()),
             self.v_of(pos.y()),
         )
@@ -198,6 +224,12 @@ class Canvas(QWidget):
             event.accept()
             return
         super().keyPressEvent(event)
+
+
+def nice_level(peak: float) -> float:
+    """The largest 1-2-5 number not above the peak (the scale's top line)."""
+    power = 10.0 ** math.floor(math.log10(max(peak, 1e-12)))
+    return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= peak * (1 + 1e-12))
 
 
 def _move_keep_index(project, tile_id: str, index: int, t: float, v: float):
@@ -245,6 +277,15 @@ class WaveformEditor(QWidget):
     @property
     def tile(self) -> Tile | None:
         return self.doc.project.tiles.get(self.tile_id) if self.tile_id else None
+
+    def track(self) -> Track | None:
+        """The track of the first selected clip that plays this tile (it gives values a unit)."""
+        project = self.doc.project
+        for clip_id in self.doc.selected_clips:
+            track, clip = project.find_clip(clip_id)
+            if clip.tile_id == self.tile_id:
+                return track
+        return None
 
     def _box(self, prefix: str) -> QDoubleSpinBox:
         box = QDoubleSpinBox()
@@ -294,23 +335,24 @@ class WaveformEditor(QWidget):
     def _typed(self) -> None:
         if self.point is None or self.tile_id is None:
             return
-        self.doc.apply(
+        self.apply(
             "set spline point",
             tile_edits.move_point,
-            self.tile_id,
             self.point,
             self.t_box.value() / display_factor(self.doc.project.axis),
             self.v_box.value(),
         )
+
+    def apply(self, label: str, edit, *args, merge_key: object = None):
+        """Edit the shown tile: edit(project, tile_id, *args), one undo step (see edit_tile)."""
+        return edit_tile(self.doc, label, self.tile_id, edit, *args, merge_key=merge_key)
 
     def delete_point(self) -> None:
         """Delete the selected control point."""
         if (
             self.point is not None
             and self.tile_id is not None
-            and self.doc.apply(
-                "delete spline point", tile_edits.remove_point, self.tile_id, self.point
-            )
+            and self.apply("delete spline point", tile_edits.remove_point, self.point)
         ):
             self.select_point(None)
 

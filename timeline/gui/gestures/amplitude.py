@@ -5,7 +5,9 @@ from __future__ import annotations
 from PySide6.QtCore import QPointF
 
 from timeline import edits
+from timeline.model import Project
 
+from ..geometry import gain_text
 from .base import Gesture
 
 
@@ -23,3 +25,7 @@ class AmplitudeGesture(Gesture):
         dy = pos.y() - self.press.y()
         factor = 2.0 ** (-dy / self.half)
         self.apply(edits.scale_clip, self.clip_id, factor)
+
+    def readout(self, project: Project) -> str:
+        _, clip = project.find_clip(self.clip_id)
+        return f"amplitude {gain_text(clip.scale)} about the mirror line {clip.pivot:.3g}"

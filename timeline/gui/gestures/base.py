@@ -6,6 +6,9 @@ from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QPointF
 
+from timeline.errors import HapticTimelineError
+from timeline.model import Project
+
 if TYPE_CHECKING:
     from ..timeline_view import TimelineView
 
@@ -29,6 +32,20 @@ class Gesture:
             return
         self.dragged = True
         self.moved(pos)
+        self.show_readout(pos)
+
+    def show_readout(self, pos: QPointF) -> None:
+        """Show the gesture's numbers beside the mouse while it drags."""
+        try:
+            text = self.readout(self.doc.project)
+        except HapticTimelineError:
+            return
+        if text:
+            self.view.show_readout(text, pos)
+
+    def readout(self, project: Project) -> str:
+        """What the drag has set, as numbers with units (empty: nothing to show)."""
+        return ""
 
     def moved(self, pos: QPointF) -> None:
         """Apply the edit for the current mouse position."""

@@ -5,7 +5,9 @@ from __future__ import annotations
 from PySide6.QtCore import QPointF
 
 from timeline import edits
+from timeline.model import Project
 
+from ..geometry import axis_text
 from .base import Gesture
 
 
@@ -27,3 +29,8 @@ class FadeGesture(Gesture):
         length = min(max(0.0, length), clip.duration)
         fade = clip.fade_in if self.which == "in" else clip.fade_out
         self.apply(edits.set_fade, self.clip_id, self.which, length, fade.shape)
+
+    def readout(self, project: Project) -> str:
+        _, clip = project.find_clip(self.clip_id)
+        fade = clip.fade_in if self.which == "in" else clip.fade_out
+        return f"fade {self.which} {axis_text(fade.length, project.axis)} ({fade.shape})"

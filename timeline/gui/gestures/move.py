@@ -7,6 +7,7 @@ from PySide6.QtCore import QPointF
 from timeline import edits
 from timeline.model import Project
 
+from ..geometry import axis_text
 from .base import Gesture
 
 
@@ -35,6 +36,10 @@ class MoveGesture(Gesture):
         track_id = target.id if target is not None else self.track_id
         shift = start - self.clip.start
         self.apply(_move_all, self.clip_id, start, track_id, self.others, shift)
+
+    def readout(self, project: Project) -> str:
+        track, clip = project.find_clip(self.clip_id)
+        return f"start {axis_text(clip.start, project.axis)} on {track.name}"
 
 
 def _move_all(

@@ -78,6 +78,7 @@ class PaletteDrop:
         clip_id = self.view.doc.apply("add clip", edits.add_clip, track_id, self.tile_id, start)
         if clip_id:
             self.view.doc.select_clips([clip_id])
+            self.view.doc.select_tile(self.tile_id)  # its shape and parameters come up below
         return clip_id
 
     def finish(self) -> None:

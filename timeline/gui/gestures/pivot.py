@@ -5,6 +5,7 @@ from __future__ import annotations
 from PySide6.QtCore import QPointF
 
 from timeline import edits
+from timeline.model import Project
 
 from .base import Gesture
 
@@ -26,3 +27,7 @@ class PivotGesture(Gesture):
         item = self.view.clip_item(self.clip_id)
         value = round(item.y_value(item.mapFromScene(pos).y()), 3)
         self.apply(edits.set_pivot, self.clip_id, value)
+
+    def readout(self, project: Project) -> str:
+        _, clip = project.find_clip(self.clip_id)
+        return f"mirror line at {clip.pivot:.3g} of full scale"

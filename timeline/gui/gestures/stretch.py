@@ -7,6 +7,7 @@ from PySide6.QtCore import QPointF
 from timeline import edits
 from timeline.model import Project
 
+from ..geometry import axis_text
 from .base import Gesture
 
 MIN_LENGTH_PX = 4.0
@@ -35,6 +36,11 @@ class StretchGesture(Gesture):
             start = self.view.snap(clip.start + du, [self.clip_id])
             length = max(smallest, clip.end - start)
             self.apply(_stretch_to, self.clip_id, clip.end - length, length / clip.duration)
+
+    def readout(self, project: Project) -> str:
+        _, clip = project.find_clip(self.clip_id)
+        length = axis_text(clip.duration, project.axis)
+        return f"stretch x{clip.stretch:.3f} ({clip.stretch_mode}), length {length}"
 
 
 def _stretch_to(project: Project, clip_id: str, start: float, factor: float) -> Project:

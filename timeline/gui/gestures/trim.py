@@ -5,7 +5,9 @@ from __future__ import annotations
 from PySide6.QtCore import QPointF
 
 from timeline import edits
+from timeline.model import Project
 
+from ..geometry import axis_text
 from .base import Gesture
 
 
@@ -27,3 +29,10 @@ class TrimGesture(Gesture):
         else:
             end = self.view.snap(self.clip.end + du, [self.clip_id])
             self.apply(edits.trim_clip, self.clip_id, end=end)
+
+    def readout(self, project: Project) -> str:
+        _, clip = project.find_clip(self.clip_id)
+        edge = clip.start if self.side == "left" else clip.end
+        name = "start" if self.side == "left" else "end"
+        axis = project.axis
+        return f"{name} {axis_text(edge, axis)}, length {axis_text(clip.duration, axis)}"

@@ -1,0 +1,57 @@
+"""Start-up: the command line loads heavy libraries only for the verbs that use them."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+PROJECTS = Path(__file__).resolve().parents[2] / "projects"
+HEAVY = ("numpy", "scipy", "scipy.interpolate", "scipy.linalg", "matplotlib", "numba", "PySide6",
+         "soundfile", "opentimelineio")  # fmt: skip
+
+PROBE = """
+import json, sys
+from timeline.cli.main import main
+try:
+    code = main(sys.argv[1:])
+except SystemExit as exc:  # --help
+    code = exc.code
+heavy = {heavy!r}
+print(json.dumps([code, sorted(m for m in heavy if m in sys.modules)]))
+"""
+
+
+def _loaded(*argv: str) -> tuple[int, list[str]]:
+    """Exit code of a verb and the heavy libraries loaded by the time it returned."""
+    done = subprocess.run(
+        [sys.executable, "-c", PROBE.format(heavy=HEAVY), *argv],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    code, loaded = json.loads(done.stdout.strip().splitlines()[-1])
+    return code, loaded
+
+
+def test_help_loads_no_heavy_library():
+    assert _loaded("--help") == (0, [])
+
+
+def test_each_verbs_help_loads_no_heavy_library():
+    from timeline.cli.main import VERB_MODULES
+
+    for module in VERB_MODULES:  # every verb, including ones added later
+        verb = module.rsplit(".", 1)[1].removesuffix("_cmd")
+        assert _loaded(verb, "--help")[1] == [], verb
+
+
+def test_rendering_an_example_loads_neither_plotting_gui_nor_compiler(tmp_path):
+    out = tmp_path / "out.csv"
+    code, loaded = _loaded("render", str(PROJECTS / "rising_resistance.htl"), "-o", str(out))
+    assert code == 0 and out.stat().st_size > 0
+    assert "numpy" in loaded
+    # the mixer needs neither scipy's splines nor its BLAS; plotting, the GUI and the compiled
+    # sim loop load only for the verbs that use them
+    assert not {"matplotlib", "numba", "PySide6", "scipy.interpolate", "scipy.linalg"} & set(loaded)

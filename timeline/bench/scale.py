@@ -1,0 +1,254 @@
+"""Cost against size: edits, save/load, hour-long recordings and start-up, each against a baseline.
+
+Every figure is a ratio to something measured in the same process a moment before, so a loaded
+machine slows both sides alike:
+
+* edits: the cost of one add_tile + add_clip at the end of a 16,000-clip build against the same
+  at its start (O(log n) edits keep this near 1), and the absolute ms per call;
+* save/load: projectfile.dumps / loads of 100,000 clips against json's C encoder / decoder on the
+  same document (the floor of any JSON file);
+* recording: building the peak pyramid of an hour at 44.1 kHz against one pass over its samples,
+  and a paint's column query at every zoom against the same pass;
+* start-up: CPU of `haptic-timeline --help` and of rendering an example, above a bare Python.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from timeline import edits, projectfile
+from timeline.bench.report import Table, best_time, figure, save
+from timeline.bench.scenes import LargeSpec, large_project
+from timeline.tiles import generator
+
+NAME = "scale"
+SUMMARY = "edits, save/load, hour-long recordings and start-up against in-process baselines"
+PROJECTS = Path(__file__).resolve().parents[2] / "projects"
+TARGET_EDIT_MS = 0.1
+TARGET_FILE_S = 1.0
+TARGET_PAINT_S = 0.016
+TARGET_STARTUP_S = 0.1
+TARGET_RENDER_CPU_S = 0.25
+
+
+def edit_costs(clips: int, tracks: int = 64) -> dict[str, float]:
+    """Seconds per add_tile + add_clip pair over the first and the last quarter of a build
+    (at most 1,000 pairs each), in process time."""
+    project = edits.new_project(templates=False)
+    track_ids = []
+    for _ in range(tracks):
+        project, track_id = edits.add_track(project, "drive")
+        track_ids.append(track_id)
+    window = min(1000, clips // 4)
+    marks = {}
+    start = time.process_time()
+    for i in range(clips):
+        if i in (window, clips - window):
+            marks[i] = time.process_time()
+        tile = generator("sine", 1.0, frequency=10.0 + 0.001 * i)
+        project, tile_id = edits.add_tile(project, tile)
+        project, _ = edits.add_clip(project, track_ids[i % tracks], tile_id, (i * 0.37) % 600)
+    end = time.process_time()
+    return {
+        "first": (marks[window] - start) / window,
+        "last": (end - marks[clips - window]) / window,
+    }
+
+
+def file_costs(clips: int, repeat: int) -> dict[str, float]:
+    """dumps/loads of a project of `clips` clips and json's C encoder/decoder on the same data."""
+    project = large_project(LargeSpec(64, clips, 600.0, 200))
+    doc = projectfile.to_json(project)
+    text = projectfile.dumps(project)
+    return {
+        "clips": sum(len(t.clips) for t in project.tracks),
+        "mb": len(text) / 1e6,
+        "dumps": best_time(lambda: projectfile.dumps(project), repeat),
+        "json_dumps": best_time(lambda: json.dumps(doc), repeat),
+        "loads": best_time(lambda: projectfile.loads(text), repeat),
+        "json_loads": best_time(lambda: json.loads(text), repeat),
+    }
+
+
+def recording_costs(seconds: float, repeat: int) -> dict[str, float]:
+    """Peak pyramid build and the slowest paint query against one pass over the samples."""
+    from timeline.gui.peaks import PeakPyramid
+
+    rate = 44_100.0
+    n = int(seconds * rate)
+    rng = np.random.default_rng(1)
+    data = np.sin(2 * np.pi * 120.0 * np.arange(n) / rate) * 0.5 + 0.01 * rng.standard_normal(n)
+    one_pass = best_time(lambda: float(np.max(data)), repeat)
+    build = best_time(lambda: PeakPyramid(data), repeat)
+    pyramid = PeakPyramid(data)
+    width = 1400
+    paints = {}
+    for span in (seconds, 600.0, 60.0, 1.0, 0.01):  # whole recording down to 10 ms per window
+        span = min(span, seconds)
+        first = (seconds - span) * 0.5 * rate
+        paints[span] = best_time(
+            lambda f=first, s=span: pyramid.columns(f, f + s * rate, width), repeat
+        )
+    level_bytes = sum(lo.nbytes + hi.nbytes for _, lo, hi in pyramid.levels)
+    return {"seconds": seconds, "pass": one_pass, "build": build, "paint": max(paints.values()),
+            "level_mb": level_bytes / 1e6, "data_mb": data.nbytes / 1e6}  # fmt: skip
+
+
+def _child_cpu(argv: list[str]) -> float:
+    """CPU seconds (user + system) one child process took."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(argv, capture_output=True, check=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def startup_costs(repeat: int) -> dict[str, float]:
+    """Least CPU of bare Python, `--help` and rendering an example to CSV, over `repeat` runs."""
+    cli = [sys.executable, "-m", "timeline.cli.main"]
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out.csv")
+        runs = {
+            "python": [sys.executable, "-c", "pass"],
+            "help": [*cli, "--help"],
+            "render": [*cli, "render", str(PROJECTS / "rising_resistance.htl"), "-o", out],
+        }
+        return {name: min(_child_cpu(argv) for _ in range(repeat)) for name, argv in runs.items()}
+
+
+def render_costs(clips: int, seconds: float, repeat: int) -> dict[str, float]:
+    """Full render of every-clip-distinct, off-grid clips on 64 tracks against a memory pass."""
+    from timeline.bench.mixer_speed import memory_pass
+    from timeline.bench.scenes import clip_samples
+    from timeline.mixer import Mixer
+
+    project = large_project(LargeSpec(64, clips, seconds, 0, off_grid=True))
+    total = clip_samples(project, project.rate)
+    Mixer().render(project, 0.0, 1.0)  # first touch of imports and caches, not timed
+    full = _best_cpu(lambda: Mixer().render(project, 0.0, seconds), repeat)
+    n = int(round(seconds * project.rate))
+    base = _best_cpu(lambda: memory_pass(total, n, 1), repeat)
+    return {"clips": clips, "full": full, "pass": base}
+
+
+def _best_cpu(fn, repeat: int) -> float:
+    """Least process CPU time of `repeat` calls: one thread's work, whatever else the machine runs
+    (the mixer uses no threads, so its CPU time is its cost)."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.process_time()
+        fn()
+        best = min(best, time.process_time() - start)
+    return best
+
+
+def run(quick: bool, out: Path) -> list[Table]:
+    repeat = 2 if quick else 3
+    render_sizes = ((250, 15.0), (1_000, 30.0)) if quick else ((1_000, 60.0), (4_000, 150.0),
+                                                                (16_000, 600.0))  # fmt: skip
+    renders = [render_costs(n, s, 1 if n > 4_000 else repeat) for n, s in render_sizes]
+    sizes = (500, 2_000) if quick else (1_000, 4_000, 16_000)
+    builds = {n: edit_costs(n) for n in sizes}
+    file_sizes = (1_000, 5_000) if quick else (10_000, 30_000, 100_000)
+    files = [file_costs(n, repeat) for n in file_sizes]
+    durations = (30.0, 120.0) if quick else (60.0, 600.0, 3600.0)
+    recordings = [recording_costs(s, repeat) for s in durations]
+    start = startup_costs(1 if quick else 3)
+
+    edit_table = Table("Scale: building through edits (64 tracks, one tile per clip)",
+                       ["clips", "ms per pair, first quarter", "ms per pair, last quarter",
+                        "last / first", "ms per call (last)"])  # fmt: skip
+    for n, cost in builds.items():
+        edit_table.rows.append([n, 1e3 * cost["first"], 1e3 * cost["last"],
+                                cost["last"] / cost["first"], 1e3 * cost["last"] / 2])  # fmt: skip
+    top = builds[sizes[-1]]
+    edit_table.notes.append(
+        f"target: <= {TARGET_EDIT_MS} ms per add_tile/add_clip at 16,000 clips: "
+        f"{1e3 * top['last'] / 2:.3f} ms at {sizes[-1]} "
+        f"({'met' if 1e3 * top['last'] / 2 <= TARGET_EDIT_MS else 'NOT met'}); process time"
+    )
+
+    file_table = Table("Scale: project save and load",
+                       ["clips", "MB", "dumps s", "json C encode s", "dumps / json",
+                        "loads s", "json C decode s", "loads / json"])  # fmt: skip
+    for f in files:
+        file_table.rows.append([f["clips"], f["mb"], f["dumps"], f["json_dumps"],
+                                f["dumps"] / f["json_dumps"], f["loads"], f["json_loads"],
+                                f["loads"] / f["json_loads"]])  # fmt: skip
+    big = files[-1]
+    file_table.notes.append(
+        f"target: save and load of 100,000 clips <= {TARGET_FILE_S:g} s each: dumps "
+        f"{big['dumps']:.2f} s, loads {big['loads']:.2f} s at {big['clips']} clips"
+    )
+
+    rec_table = Table("Scale: peak pyramid of a 44.1 kHz recording (1,400 px columns)",
+                      ["seconds", "samples MB", "levels MB", "one pass s", "build s",
+                       "build / pass", "slowest paint query s", "paint / pass"])  # fmt: skip
+    for r in recordings:
+        rec_table.rows.append([r["seconds"], r["data_mb"], r["level_mb"], r["pass"], r["build"],
+                               r["build"] / r["pass"], r["paint"],
+                               r["paint"] / r["pass"]])  # fmt: skip
+    rec_table.notes.append(
+        f"target: a paint's query well inside {1e3 * TARGET_PAINT_S:g} ms at every zoom "
+        f"(whole recording, 10 min, 1 min, 1 s, 10 ms windows): slowest "
+        f"{1e3 * recordings[-1]['paint']:.3f} ms at {recordings[-1]['seconds']:g} s"
+    )
+
+    help_cpu = start["help"] - start["python"]
+    render_cpu = start["render"] - start["python"]
+    start_table = Table("Scale: start-up CPU above a bare Python",
+                        ["run", "CPU s", "above bare Python s", "target s"])  # fmt: skip
+    start_table.rows += [
+        ["python -c pass", start["python"], 0.0, ""],
+        ["haptic-timeline --help", start["help"], help_cpu, TARGET_STARTUP_S],
+        ["render rising_resistance.htl", start["render"], render_cpu, TARGET_RENDER_CPU_S],
+    ]
+    start_table.notes.append(
+        f"least of {1 if quick else 3} run(s); user + system CPU of each child process"
+    )
+    render_table = Table("Scale: full render, every clip its own shape, off-grid starts, 64 tracks",
+                         ["clips", "memory pass CPU s", "full render CPU s",
+                          "full / pass"])  # fmt: skip
+    for r in renders:
+        render_table.rows.append([r["clips"], r["pass"], r["full"], r["full"] / r["pass"]])
+    render_table.notes.append("target: <= 8x the memory pass at 16,000-20,000 distinct clips")
+    plot(builds, files, recordings, renders, out)
+    return [render_table, edit_table, file_table, rec_table, start_table]
+
+
+def plot(builds: dict[int, dict], files: list[dict], recordings: list[dict], renders: list[dict],
+         out: Path) -> None:  # fmt: skip
+    """Log-log: cost against clips (render, edits, save, load) and against recording length."""
+    fig, (by_clips, by_length) = figure(9.0, 3.8, ncols=2)
+    by_clips.loglog([r["clips"] for r in renders], [1e3 * r["full"] for r in renders], "D-",
+                    label="full render, distinct clips (ms)")  # fmt: skip
+    by_clips.loglog([r["clips"] for r in renders], [1e3 * r["pass"] for r in renders], ":",
+                    color="0.5", label="memory pass (ms)")  # fmt: skip
+    sizes = sorted(builds)
+    by_clips.loglog(sizes, [1e3 * builds[n]["last"] / 2 for n in sizes], "o-",
+                    label="one edit (ms), at the end of a build")  # fmt: skip
+    clips = [f["clips"] for f in files]
+    by_clips.loglog(clips, [1e3 * f["dumps"] for f in files], "s-", label="save (ms)")
+    by_clips.loglog(clips, [1e3 * f["loads"] for f in files], "^-", label="load (ms)")
+    by_clips.set_xlabel("clips")
+    by_clips.set_ylabel("cost (ms, log)")
+    by_clips.legend(fontsize=7)
+    seconds = [r["seconds"] for r in recordings]
+    by_length.loglog(seconds, [1e3 * r["build"] for r in recordings], "o-",
+                     label="peak pyramid build (ms)")  # fmt: skip
+    by_length.loglog(seconds, [1e3 * r["paint"] for r in recordings], "s-",
+                     label="slowest paint query (ms)")  # fmt: skip
+    by_length.loglog(seconds, [1e3 * r["pass"] for r in recordings], ":", color="0.5",
+                     label="one pass over the samples (ms)")  # fmt: skip
+    by_length.set_xlabel("recording length (s, 44.1 kHz)")
+    by_length.legend(fontsize=7)
+    fig.suptitle("Cost against size", fontsize=10)
+    save(fig, out, "scale")

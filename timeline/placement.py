@@ -1,0 +1,89 @@
+"""Where a clip of some length fits on a track without covering another clip (Qt-free).
+
+Duplicate, paste and import use it so that new material lands in a gap rather than on top of
+what is there; when the track has no room before `limit`, the caller decides what to do.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from timeline import edits
+from timeline.model import Project
+
+EPS = 1e-9
+
+
+def free_start(
+    project: Project,
+    track_id: str,
+    length: float,
+    at: float,
+    ignore: Iterable[str] = (),
+    limit: float = float("inf"),
+) -> float | None:
+    """The earliest start >= `at` where [start, start + length) covers no clip of the track.
+
+    Clips in `ignore` do not count. Returns None when no such start is below `limit`.
+    """
+    skip = set(ignore)
+    spans = sorted((c.start, c.end) for c in project.track(track_id).clips if c.id not in skip)
+    start = max(0.0, at)
+    for a, b in spans:
+        if b <= start + EPS:
+            continue
+        if a >= start + length - EPS:
+            break
+        start = b
+    return start if start < limit else None
+
+
+def overlaps(project: Project, track_id: str) -> dict[str, tuple[tuple[float, float], ...]]:
+    """Per clip of a track, the axis span where other clips of the track cover it (O(n log n)).
+
+    The span runs from where the first other clip reaches into it to where the last one leaves
+    it (gaps between several covering clips are not split out: it is what the lane hatches).
+    """
+    clips = sorted(project.track(track_id).clips, key=lambda c: (c.start, c.end))
+    n = len(clips)
+    later_reach = [float("-inf")] * (n + 1)  # max end of the clips after each one
+    for i in range(n - 1, -1, -1):
+        later_reach[i] = max(later_reach[i + 1], clips[i].end)
+    found: dict[str, tuple[tuple[float, float], ...]] = {}
+    reach = float("-inf")  # max end of the clips before
+    for i, c in enumerate(clips):
+        lo, hi = float("inf"), float("-inf")
+        if reach > c.start + EPS:  # earlier clips cover its start
+            lo, hi = c.start, min(c.end, reach)
+        if i + 1 < n and clips[i + 1].start < c.end - EPS:  # later clips start inside it
+            lo = min(lo, clips[i + 1].start)
+            hi = max(hi, min(c.end, later_reach[i + 1]))
+        if hi - lo > EPS:
+            found[c.id] = ((lo, hi),)
+        reach = max(reach, c.end)
+    return found
+
+
+def into_gap(project: Project, clip_ids: list[str], at: float) -> Project:
+    """Move new clips (placed from `at` on) later together, to where none covers an older clip.
+
+    Used after an import: the new material keeps its own layout and lands in the first gap on
+    each of its tracks that holds all of it.
+    """
+    new = set(clip_ids)
+    if not new:
+        return project
+    placed = [project.find_clip(i) for i in clip_ids]
+    first = min(c.start for _, c in placed)
+    shift = 0.0
+    for track in {t.id for t, _ in placed}:
+        mine = [c for t, c in placed if t.id == track]
+        span = max(c.end for c in mine) - first
+        start = free_start(project, track, span, first + shift, ignore=new)
+        shift = max(shift, (start if start is not None else first) - first)
+    if shift <= EPS:
+        return project
+    for clip_id in clip_ids:
+        _, clip = project.find_clip(clip_id)
+        project = edits.move_clip(project, clip_id, clip.start + shift)
+    return project
