@@ -1,17 +1,30 @@
 """Apple AHAP (Core Haptics JSON): transient and continuous events, parameter curves.
 
-Reading: HapticTransient and HapticContinuous events with HapticIntensity/HapticSharpness, the
-continuous events' Attack/Decay/Release envelope, HapticIntensityControl (a multiplier) and
-HapticSharpnessControl (an offset) as dynamic parameters or curves become drive clips; the
-controls shape continuous events only (transients keep their own values, as in files made by
-Lofelt's converter). Actuator
-amplitude is intensity squared, as Lofelt's converter writes it. Audio events are skipped.
-Writing: the drive layer is analysed into intensity and sharpness curves (at most 16 control
-points each, chained) over continuous events of at most 30 s, and transients.
+Reading turns the pattern into one vibration design (timeline.vibration): the felt amplitude is
+intensity squared, where intensity = event intensity x Attack/Decay/Release envelope x
+HapticIntensityControl (a multiplier, linear between curve points, stepped by dynamic
+parameters); sharpness = event sharpness + HapticSharpnessControl. Breakpoints sit at every
+event edge, envelope corner and control point; between them points are added (evenly in
+intensity) until the design's straight amplitude segments are within READ_TOLERANCE of the
+player's curve. Continuous events cover [Time, Time + EventDuration), so at a join the later
+event's value holds. Controls shape continuous events only (transients keep their own values).
+Audio events are skipped with a note.
+
+Sharpness follows the tool a file came from. Meta's and Lofelt's converters (the signature:
+continuous events of intensity 1 and sharpness 0 shaped by curves) write sharpness =
+sqrt(frequency), transients with sharpness = emphasis frequency, and duck the intensity control
+point at each emphasis by 20 %; reading such a file undoes the ducking and squares the
+sharpness. Other files (Apple's own, hand-made) are read with frequency = sharpness. The
+convention is kept with the design, so an export writes the file's numbers back.
+
+Writing fits the design in the domain the player interpolates in (module _envelope_fit):
+intensity control points within WRITE_TOLERANCE in amplitude, the same for sqrt sharpness;
+continuous events of at most 30 s, curves of at most 16 points, chained.
 """
 
 from __future__ import annotations
 
+import bisect
 import math
 from pathlib import Path
 from typing import Any
@@ -19,16 +32,33 @@ from typing import Any
 import numpy as np
 
 from importers import _vibration as vib
-from timeline.formats import FormatError, Imported, Progress
-from timeline.model import DEFAULT_TIME_RATE, Project
+from importers._envelope_fit import roots_of_lines, squares_of_roots
+from timeline.formats import FormatError, Imported, Placement, Progress
+from timeline.model import Project
+from timeline.vibration import (
+    DRIVE,
+    Emphasis,
+    VibrationDesign,
+    VibrationTile,
+    design_of,
+    sharpness_convention,
+)
+from timeline.vibration_analysis import simplify
 
 MAX_CONTINUOUS = 30.0  # s: Core Haptics' longest continuous event
 MAX_CURVE_POINTS = 16  # Core Haptics' limit per parameter curve
+MAX_EVENTS = 50_000  # pattern entries read from one file (a bound on time: formats.md)
 DEFAULT_INTENSITY = 1.0
 DEFAULT_SHARPNESS = 0.5
+DUCKING = 0.8  # Meta's converter: intensity control x 0.8 at a point that carries an emphasis
+READ_TOLERANCE = 0.005  # amplitude: design vs the player's curve
+WRITE_TOLERANCE = 0.01  # amplitude (and frequency): the player's curve vs the design
+CREATED = "haptic-timeline"
+LINEAR_NOTE = "sharpness = frequency"
+SQRT_NOTE = "sharpness = sqrt(frequency)"
 
 
-def _parameters(event: dict[str, Any], where: str) -> dict[str, float]:
+def _parameters(event: dict[str, Any], where: str, notes: list[str]) -> dict[str, float]:
     found: dict[str, float] = {}
     params = event.get("EventParameters", [])
     if not isinstance(params, list):
@@ -37,172 +67,18 @@ def _parameters(event: dict[str, Any], where: str) -> dict[str, float]:
         if not isinstance(p, dict) or not isinstance(p.get("ParameterID"), str):
             raise FormatError(f"{where}: each event parameter needs a ParameterID")
         pid = p["ParameterID"]
-        lo = (
-            0.0
-            if pid
-            in ("HapticIntensity", "HapticSharpness", "AttackTime", "DecayTime", "ReleaseTime")
-            else -math.inf
-        )
         if pid == "Sustained":
             found[pid] = float(bool(p.get("ParameterValue", True)))
-        else:
-            found[pid] = vib.number(p.get("ParameterValue"), f"{where}: {pid}", lo)
+            continue
+        if "ParameterValue" not in p:
+            raise FormatError(f"{where}: {pid} has no ParameterValue")
+        lo = 0.0 if pid.startswith("Haptic") or pid.endswith("Time") else -math.inf
+        value = vib.number(p["ParameterValue"], f"{where}: {pid}", lo)
+        if pid in ("HapticIntensity", "HapticSharpness") and value > 1.0:
+            notes.append(f"{where}: {pid} {value:g} clamped to 1")
+            value = 1.0
+        found[pid] = value
     return found
-
-
-class _Control:
-    """A control value over the sample grid, set by dynamic parameters and curves in time order."""
-
-    def __init__(self, n: int, rate: float, default: float) -> None:
-        self.t = np.arange(n) / rate
-        self.values = np.full(n, default)
-
-    def step(self, time: float, value: float) -> None:
-        self.values[np.searchsorted(self.t, time) :] = value
-
-    def curve(self, times: np.ndarray, values: np.ndarray) -> None:
-        i0 = np.searchsorted(self.t, times[0])
-        self.values[i0:] = np.interp(self.t[i0:], times, values)
-
-
-class AhapFormat:
-    """Apple AHAP: reads events and curves into drive clips; writes a drive layer."""
-
-    name = "ahap"
-    extensions = (".ahap",)
-    reads = "design"
-    writes = "project"
-    options = ("rate",)
-
-    def read(
-        self,
-        path: Path,
-        *,
-        progress: Progress | None = None,
-        rate: float | None = None,
-        **options: Any,
-    ) -> Imported:
-        """Synthesise the pattern's drive waveform at `rate` (default 10 kHz)."""
-        path = Path(path)
-        rate = float(rate or DEFAULT_TIME_RATE)
-        doc = vib.load_json(path, "AHAP")
-        if not isinstance(doc, dict) or not isinstance(doc.get("Pattern"), list):
-            raise FormatError(f"{path.name} is not an AHAP file (it has no Pattern list)")
-        events, controls, notes = self._entries(doc["Pattern"], path.name)
-        ends = [e["time"] + e.get("duration", 0.0) for e in events]
-        if not events:
-            raise FormatError(f"{path.name} holds no haptic events")
-        n = vib.grid_length(max(ends) + 0.05, rate)
-        intensity = _Control(n, rate, 1.0)
-        sharp_offset = _Control(n, rate, 0.0)
-        for kind, time, times, values in sorted(controls, key=lambda c: c[1]):
-            target = intensity if kind == "HapticIntensityControl" else sharp_offset
-            if times is None:
-                target.step(time, values)
-            else:
-                target.curve(times, values)
-        placements = []
-        continuous = [e for e in events if e["type"] == "HapticContinuous"]
-        if continuous:
-            placements.append(self._continuous(continuous, intensity, sharp_offset, rate, path))
-        for e in events:  # controls shape continuous events only, as Lofelt's converter assumes
-            if e["type"] == "HapticTransient":
-                placements.append(
-                    vib.transient_placement(e["time"], e["intensity"] ** 2, e["sharpness"])
-                )
-        if progress is not None:
-            progress(1.0)
-        return vib.imported(placements, notes, path.name)
-
-    @staticmethod
-    def _continuous(events, intensity, sharp_offset, rate, path):
-        t = intensity.t
-        level = np.zeros(len(t))
-        sharp = np.zeros(len(t))
-        for e in events:
-            local = t - e["time"]
-            inside = (local >= 0) & (local <= e["duration"])
-            env = _adsr(local[inside], e)
-            level[inside] += e["intensity"] * env * intensity.values[inside]
-            sharp[inside] = e["sharpness"] + sharp_offset.values[inside]
-        first = min(e["time"] for e in events)
-        last = max(e["time"] + e["duration"] for e in events)
-        i0, i1 = int(np.searchsorted(t, first)), int(np.searchsorted(t, last, side="right"))
-        amplitude = np.clip(level[i0:i1], 0.0, 1.0) ** 2
-        return vib.continuous_placement(
-            amplitude,
-            np.clip(sharp[i0:i1], 0.0, 1.0),
-            rate,
-            float(t[i0]),
-            f"{path.stem} continuous",
-            str(path),
-        )
-
-    @staticmethod
-    def _entries(pattern: list[Any], name: str):
-        events: list[dict[str, Any]] = []
-        controls: list[tuple[str, float, Any, Any]] = []
-        notes: list[str] = []
-        for k, entry in enumerate(pattern):
-            where = f"{name}, pattern entry {k + 1}"
-            if not isinstance(entry, dict):
-                raise FormatError(f"{where} is not an object")
-            if "Event" in entry:
-                event = _event(entry["Event"], where, notes)
-                if event is not None:
-                    events.append(event)
-            elif "ParameterCurve" in entry:
-                control = _curve(entry["ParameterCurve"], where)
-                if control is not None:
-                    controls.append(control)
-            elif "Parameter" in entry:
-                control = _dynamic(entry["Parameter"], where)
-                if control is not None:
-                    controls.append(control)
-            else:
-                raise FormatError(f"{where} is not an Event, ParameterCurve or Parameter")
-        return events, controls, notes
-
-    def write(self, source: Project, path: Path, rate: float | None = None, **options: Any) -> None:
-        """Write the project's sounding drive tracks as an AHAP pattern."""
-        analysis = vib.analyse(source, rate)
-        pattern: list[dict[str, Any]] = []
-        sounding = any(v > 0 for _, v in analysis.amplitude)
-        if sounding:
-            start, end = analysis.amplitude[0][0], analysis.amplitude[-1][0]
-            t = start
-            while t < end:
-                length = min(MAX_CONTINUOUS, end - t)
-                pattern.append(_event_json("HapticContinuous", t, 1.0, 0.0, length))
-                t += length
-            intensity = [(tt, math.sqrt(v)) for tt, v in analysis.amplitude]
-            pattern += _curves("HapticIntensityControl", intensity)
-            pattern += _curves("HapticSharpnessControl", analysis.sharpness)
-        for tr in analysis.transients:
-            pattern.append(
-                _event_json("HapticTransient", tr.time, math.sqrt(tr.intensity), tr.sharpness)
-            )
-        if not pattern:
-            raise FormatError("the project's drive layer is silent: there is nothing to export")
-        pattern.sort(key=lambda p: next(iter(p.values()))["Time"])
-        doc = {
-            "Version": 1.0,
-            "Metadata": {"Project": "", "Created": "haptic-timeline", "Description": ""},
-            "Pattern": pattern,
-        }
-        vib.write_json(doc, path)
-
-
-def _adsr(local: np.ndarray, e: dict[str, Any]) -> np.ndarray:
-    """An approximation of Core Haptics' continuous-event envelope (attack, decay, release)."""
-    env = np.ones(len(local))
-    if e["attack"] > 0:
-        env = np.minimum(env, local / e["attack"])
-    if not e["sustained"] and e["decay"] > 0:
-        env = np.minimum(env, np.clip(1.0 - (local - e["attack"]) / e["decay"], 0.0, 1.0))
-    if e["release"] > 0:
-        env = np.minimum(env, np.clip((e["duration"] - local) / e["release"], 0.0, 1.0))
-    return np.clip(env, 0.0, 1.0)
 
 
 def _event(event: Any, where: str, notes: list[str]) -> dict[str, Any] | None:
@@ -212,16 +88,20 @@ def _event(event: Any, where: str, notes: list[str]) -> dict[str, Any] | None:
     if kind not in ("HapticTransient", "HapticContinuous"):
         notes.append(f"{kind} events are not haptic and were skipped")
         return None
-    params = _parameters(event, where)
+    if "Time" not in event:
+        raise FormatError(f"{where}: the event has no Time")
+    params = _parameters(event, where, notes)
     out = {
         "type": kind,
-        "time": vib.number(event.get("Time"), f"{where}: Time", 0.0, vib.MAX_DURATION),
-        "intensity": min(params.get("HapticIntensity", DEFAULT_INTENSITY), 1.0),
-        "sharpness": min(params.get("HapticSharpness", DEFAULT_SHARPNESS), 1.0),
+        "time": vib.number(event["Time"], f"{where}: Time", 0.0, vib.MAX_DURATION),
+        "intensity": params.get("HapticIntensity", DEFAULT_INTENSITY),
+        "sharpness": params.get("HapticSharpness", DEFAULT_SHARPNESS),
     }
     if kind == "HapticContinuous":
+        if "EventDuration" not in event:
+            raise FormatError(f"{where}: the continuous event has no EventDuration")
         out["duration"] = vib.number(
-            event.get("EventDuration"), f"{where}: EventDuration", 0.0, vib.MAX_DURATION
+            event["EventDuration"], f"{where}: EventDuration", 0.0, vib.MAX_DURATION
         )
         if out["duration"] > MAX_CONTINUOUS:
             notes.append(f"a continuous event is longer than Core Haptics' {MAX_CONTINUOUS:g} s")
@@ -236,7 +116,7 @@ def _control_range(pid: str) -> tuple[float, float] | None:
     return {"HapticIntensityControl": (0.0, 1.0), "HapticSharpnessControl": (-1.0, 1.0)}.get(pid)
 
 
-def _curve(curve: Any, where: str) -> tuple[str, float, np.ndarray, np.ndarray] | None:
+def _curve(curve: Any, where: str) -> tuple[str, float, list[tuple[float, float]]] | None:
     if not isinstance(curve, dict):
         raise FormatError(f"{where}: a ParameterCurve must be an object")
     pid = curve.get("ParameterID")
@@ -248,22 +128,24 @@ def _curve(curve: Any, where: str) -> tuple[str, float, np.ndarray, np.ndarray] 
     if not isinstance(points, list) or not points:
         raise FormatError(f"{where}: a ParameterCurve needs control points")
     times, values = [], []
-    for p in points:
+    for k, p in enumerate(points):
         if not isinstance(p, dict):
             raise FormatError(f"{where}: each control point must be an object")
-        times.append(vib.number(p.get("Time"), f"{where}: control point Time", 0.0))
-        values.append(vib.number(p.get("ParameterValue"), f"{where}: control point value", *bounds))
-    times_a = np.array(times)
-    if np.any(np.diff(times_a) < 0):
+        for field in ("Time", "ParameterValue"):
+            if field not in p:
+                raise FormatError(f"{where}: control point {k + 1} has no {field}")
+        times.append(vib.number(p["Time"], f"{where}: control point Time", 0.0))
+        values.append(vib.number(p["ParameterValue"], f"{where}: control point value", *bounds))
+    if any(b < a for a, b in zip(times, times[1:], strict=False)):
         raise FormatError(f"{where}: control point times go backwards")
-    # Apple's control point times are relative to the curve; Lofelt's converter writes them
-    # absolute (the first equals the curve's Time). Accept both.
-    if not (start > 0 and times_a[0] == start):
-        times_a = times_a + start
-    return pid, float(times_a[0]), times_a, np.array(values)
+    # Apple's control point times are relative to the curve; Meta's and Lofelt's converters write
+    # them absolute (the first equals the curve's Time). Accept both.
+    if not (start > 0 and times[0] == start):
+        times = [t + start for t in times]
+    return pid, times[0], list(zip(times, values, strict=True))
 
 
-def _dynamic(param: Any, where: str) -> tuple[str, float, None, float] | None:
+def _dynamic(param: Any, where: str) -> tuple[str, float, list[tuple[float, float]]] | None:
     if not isinstance(param, dict):
         raise FormatError(f"{where}: a Parameter must be an object")
     pid = param.get("ParameterID")
@@ -271,7 +153,246 @@ def _dynamic(param: Any, where: str) -> tuple[str, float, None, float] | None:
     if bounds is None:
         return None
     time = vib.number(param.get("Time"), f"{where}: Time", 0.0, vib.MAX_DURATION)
-    return pid, time, None, vib.number(param.get("ParameterValue"), f"{where}: value", *bounds)
+    return pid, time, [(time, vib.number(param.get("ParameterValue"), f"{where}: value", *bounds))]
+
+
+def _entries(pattern: list[Any], name: str):
+    if len(pattern) > MAX_EVENTS:
+        raise FormatError(
+            f"{name} has {len(pattern):,} pattern entries; at most {MAX_EVENTS:,} are read"
+        )
+    events: list[dict[str, Any]] = []
+    controls: list[tuple[str, float, list[tuple[float, float]]]] = []
+    notes: list[str] = []
+    for k, entry in enumerate(pattern):
+        where = f"{name}, pattern entry {k + 1}"
+        if not isinstance(entry, dict):
+            raise FormatError(f"{where} is not an object")
+        if "Event" in entry:
+            event = _event(entry["Event"], where, notes)
+            if event is not None:
+                events.append(event)
+        elif "ParameterCurve" in entry:
+            control = _curve(entry["ParameterCurve"], where)
+            if control is not None:
+                controls.append(control)
+        elif "Parameter" in entry:
+            control = _dynamic(entry["Parameter"], where)
+            if control is not None:
+                controls.append(control)
+        else:
+            raise FormatError(f"{where} is not an Event, ParameterCurve or Parameter")
+    return events, controls, notes
+
+
+# --- the player's curves ------------------------------------------------------------------------
+
+
+class _Control:
+    """A control over time: linear between points, stepping where two share a time."""
+
+    def __init__(self, default: float) -> None:
+        self._t, self._v = [0.0], [default]
+        self.t, self.v = np.array(self._t), np.array(self._v)
+
+    def set_from(self, start: float, points: list[tuple[float, float]]) -> None:
+        """From `start` on, follow `points` (a curve, or one point for a dynamic parameter)."""
+        if start >= self._t[-1]:
+            left = self._v[-1]
+        else:  # a curve that starts before the last one ended replaces it from there
+            self.t, self.v = np.array(self._t), np.array(self._v)
+            left = float(self.at(np.array([start]), left=True)[0])
+            k = bisect.bisect_left(self._t, start)
+            del self._t[k:], self._v[k:]
+        self._t += [start] + [p[0] for p in points]
+        self._v += [left] + [p[1] for p in points]
+
+    def freeze(self) -> _Control:
+        self.t, self.v = np.array(self._t), np.array(self._v)
+        return self
+
+    def at(self, u: np.ndarray, left: bool = False) -> np.ndarray:
+        """Values at times u (the value just before u where `left`); the last value holds."""
+        k = np.searchsorted(self.t, u, side="left" if left else "right") - 1
+        k = np.clip(k, 0, len(self.t) - 1)
+        nxt = np.minimum(k + 1, len(self.t) - 1)
+        width = self.t[nxt] - self.t[k]
+        safe = np.where(width > 0, width, 1.0)
+        slope = np.where(width > 0, (self.v[nxt] - self.v[k]) / safe, 0.0)
+        return self.v[k] + slope * (np.asarray(u) - self.t[k])
+
+
+def _adsr(local: np.ndarray, e: dict[str, np.ndarray]) -> np.ndarray:
+    """Core Haptics' continuous-event envelope: linear attack, decay (unsustained), release."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        env = np.where(e["attack"] > 0, local / e["attack"], 1.0)
+        decay = np.clip(1.0 - (local - e["attack"]) / e["decay"], 0.0, 1.0)
+        env = np.minimum(env, np.where(~e["sustained"] & (e["decay"] > 0), decay, 1.0))
+        release = np.clip((e["duration"] - local) / e["release"], 0.0, 1.0)
+        env = np.minimum(env, np.where(e["release"] > 0, release, 1.0))
+    return np.clip(env, 0.0, 1.0)
+
+
+def _corners(e: dict[str, np.ndarray]) -> np.ndarray:
+    s, d = e["time"], e["duration"]
+    decayed = np.where(e["sustained"], s, s + np.minimum(e["attack"] + e["decay"], d))
+    ends = [s, s + d, s + np.minimum(e["attack"], d), s + np.maximum(d - e["release"], 0.0)]
+    return np.concatenate([*ends, decayed])
+
+
+FIELDS = ("time", "duration", "intensity", "sharpness", "attack", "decay", "release", "sustained")
+
+
+class _Player:
+    """Intensity and sharpness of the continuous events at any time, as Core Haptics plays them."""
+
+    def __init__(self, events: list[dict[str, Any]], intensity, sharpness) -> None:
+        events = sorted(events, key=lambda e: e["time"])
+        self.e = {f: np.array([e[f] for e in events]) for f in FIELDS}
+        self.end = self.e["time"] + self.e["duration"]
+        self.disjoint = bool(np.all(self.e["time"][1:] >= self.end[:-1]))
+        self.intensity, self.sharpness = intensity.freeze(), sharpness.freeze()
+
+    def values(self, u: np.ndarray, left: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """Intensity and sharpness at times u (just before u where `left`)."""
+        if self.disjoint:
+            level, sharp = self._one_at_a_time(u, left)
+        else:
+            level, sharp = self._overlapping(u, left)
+        level = level * self.intensity.at(u, left)
+        sharp = sharp + self.sharpness.at(u, left)
+        return np.clip(level, 0.0, 1.0), np.clip(sharp, 0.0, 1.0)
+
+    @staticmethod
+    def _inside(u: np.ndarray, start: np.ndarray, end: np.ndarray, left: bool) -> np.ndarray:
+        """Whether u is in [start, end) (in (start, end] for values just before u)."""
+        if left:
+            return (u > start) & (u <= end)
+        return (u >= start) & (u < end)
+
+    def _one_at_a_time(self, u: np.ndarray, left: bool):
+        k = np.searchsorted(self.e["time"], u, side="left" if left else "right") - 1
+        kk = np.clip(k, 0, len(self.end) - 1)
+        e = {f: v[kk] for f, v in self.e.items()}
+        local = u - e["time"]
+        inside = (k >= 0) & self._inside(u, e["time"], self.end[kk], left)
+        level = np.where(inside, e["intensity"] * _adsr(local, e), 0.0)
+        return level, np.where(inside, e["sharpness"], 0.0)
+
+    def _overlapping(self, u: np.ndarray, left: bool):
+        level, sharp = np.zeros(len(u)), np.zeros(len(u))
+        order = np.argsort(u, kind="stable")
+        su = u[order]
+        for i in range(len(self.end)):
+            a = np.searchsorted(su, self.e["time"][i], side="left")
+            b = np.searchsorted(su, self.end[i], side="right")
+            idx = order[a:b]
+            e = {f: v[i] for f, v in self.e.items()}
+            local = u[idx] - e["time"]
+            inside = self._inside(u[idx], e["time"], self.end[i], left)
+            level[idx[inside]] += e["intensity"] * _adsr(local[inside], e)
+            sharp[idx[inside]] = e["sharpness"]
+        return level, sharp
+
+
+def _knots(player: _Player, controls) -> np.ndarray:
+    times = [_corners(player.e)] + [np.array([t for t, _ in pts]) for _, _, pts in controls]
+    knots = np.unique(np.concatenate(times))
+    return knots[(knots >= player.e["time"].min()) & (knots <= player.end.max())]
+
+
+def _stepped(knots: np.ndarray, player: _Player, which: int) -> tuple[np.ndarray, np.ndarray]:
+    """(time, value) at every knot, two where the value jumps (left then right)."""
+    right = player.values(knots)[which].copy()
+    left = player.values(knots, left=True)[which]
+    right[-1] = left[-1]  # the design ends with the events' last value
+    jump = np.abs(left - right) > 1e-12
+    jump[0] = False
+    counts = 1 + jump.astype(np.int64)
+    t = np.repeat(knots, counts)
+    v = np.empty(len(t))
+    at_right = np.cumsum(counts) - 1
+    v[at_right] = right
+    v[at_right[jump] - 1] = left[jump]
+    return t, v
+
+
+def _squared(knots: np.ndarray, player: _Player, which: int, tolerance: float):
+    """The player's curve squared, as breakpoints within tolerance of it."""
+    t, r = _stepped(knots, player, which)
+    tt, vv = squares_of_roots(t, r, tolerance)
+    mid = 0.5 * (knots[:-1] + knots[1:])
+    chord = 0.5 * (player.values(knots)[which][:-1] + player.values(knots, left=True)[which][1:])
+    if not np.any(np.abs(player.values(mid)[which] - chord) > 1e-9):
+        return tt, vv
+    # Overlapping events or an envelope times a control bend the curve between knots: add the
+    # squared curve's own samples and reduce them within the tolerance.
+    u = np.linspace(knots[0], knots[-1], 64 * len(knots))
+    grid = np.concatenate([tt, u])
+    values = np.concatenate([vv, player.values(u)[which] ** 2])
+    order = np.argsort(grid, kind="stable")
+    points = simplify(grid[order], values[order], tolerance)
+    return np.array([p[0] for p in points]), np.array([p[1] for p in points])
+
+
+def _converter_made(events, controls) -> bool:
+    """Made by Meta's or Lofelt's converter: flat continuous events shaped by control curves."""
+    continuous = [e for e in events if e["type"] == "HapticContinuous"]
+    return (
+        bool(continuous)
+        and all(e["intensity"] == 1.0 and e["sharpness"] == 0.0 for e in continuous)
+        and any(pid == "HapticIntensityControl" for pid, _, _ in controls)
+    )
+
+
+def _convention(doc: dict[str, Any], events, controls) -> str:
+    meta = doc.get("Metadata")
+    if isinstance(meta, dict) and meta.get("Created") == CREATED:
+        return "linear" if meta.get("Description") == LINEAR_NOTE else "sqrt"
+    return "sqrt" if _converter_made(events, controls) else "linear"
+
+
+def _pairs(t: np.ndarray, v: np.ndarray) -> list[tuple[float, float]]:
+    return list(zip(t.tolist(), v.tolist(), strict=True))
+
+
+def read_design(path: Path) -> tuple[VibrationDesign, str, list[str]]:
+    """The AHAP file's design, its sharpness convention, and notes on what was approximated."""
+    doc = vib.load_json(path, "AHAP")
+    if not isinstance(doc, dict) or not isinstance(doc.get("Pattern"), list):
+        raise FormatError(f"{path.name} is not an AHAP file (it has no Pattern list)")
+    events, controls, notes = _entries(doc["Pattern"], path.name)
+    if not events:
+        raise FormatError(f"{path.name} holds no haptic events (no transient or continuous event)")
+    convention = _convention(doc, events, controls)
+    transients = [e for e in events if e["type"] == "HapticTransient"]
+    if convention == "sqrt":  # undo the converter's ducking at emphasis points
+        at = {e["time"] for e in transients}
+        controls = [
+            (pid, start, _unducked(pts, at) if pid == "HapticIntensityControl" else pts)
+            for pid, start, pts in controls
+        ]
+    intensity, sharpness = _Control(1.0), _Control(0.0)
+    for pid, start, pts in sorted(controls, key=lambda c: c[1]):
+        (intensity if pid == "HapticIntensityControl" else sharpness).set_from(start, pts)
+    continuous = [e for e in events if e["type"] == "HapticContinuous" and e["duration"] > 0]
+    amplitude: list[tuple[float, float]] = []
+    frequency: list[tuple[float, float]] = []
+    if continuous:
+        player = _Player(continuous, intensity, sharpness)
+        knots = _knots(player, controls)
+        amplitude = _pairs(*_squared(knots, player, 0, READ_TOLERANCE))
+        if convention == "sqrt":
+            frequency = _pairs(*_squared(knots, player, 1, READ_TOLERANCE))
+        else:
+            frequency = _pairs(*_stepped(knots, player, 1))
+    emphasis = [Emphasis(e["time"], e["intensity"] ** 2, e["sharpness"]) for e in transients]
+    ends = [t for t, _ in amplitude + frequency] + [e.time + e.length for e in emphasis]
+    design = VibrationDesign(tuple(amplitude), tuple(frequency), tuple(emphasis), max(ends))
+    return design, convention, notes
+
+
+# --- writing ------------------------------------------------------------------------------------
 
 
 def _event_json(
@@ -281,14 +402,14 @@ def _event_json(
     if duration is not None:
         event["EventDuration"] = duration
     event["EventParameters"] = [
-        {"ParameterID": "HapticIntensity", "ParameterValue": round(intensity, 6)},
-        {"ParameterID": "HapticSharpness", "ParameterValue": round(sharp, 6)},
+        {"ParameterID": "HapticIntensity", "ParameterValue": intensity},
+        {"ParameterID": "HapticSharpness", "ParameterValue": sharp},
     ]
     return {"Event": event}
 
 
 def _curves(pid: str, points: list[tuple[float, float]]) -> list[dict[str, Any]]:
-    """Curves of at most 16 control points, each starting where the previous one ended."""
+    """Curves of at most 16 control points (times relative), each starting where the last ended."""
     curves = []
     i = 0
     while True:
@@ -300,7 +421,7 @@ def _curves(pid: str, points: list[tuple[float, float]]) -> list[dict[str, Any]]
                     "ParameterID": pid,
                     "Time": start,
                     "ParameterCurveControlPoints": [
-                        {"Time": t - start, "ParameterValue": round(v, 6)} for t, v in chunk
+                        {"Time": t - start, "ParameterValue": v} for t, v in chunk
                     ],
                 }
             }
@@ -308,6 +429,107 @@ def _curves(pid: str, points: list[tuple[float, float]]) -> list[dict[str, Any]]
         i += MAX_CURVE_POINTS - 1
         if i >= len(points) - 1:
             return curves
+
+
+def _unducked(points: list[tuple[float, float]], times: set[float]) -> list[tuple[float, float]]:
+    """Control points with the first at each emphasis time raised back by 1 / DUCKING."""
+    out, done = [], set()
+    for t, v in points:
+        if t in times and t not in done:
+            done.add(t)
+            v = min(1.0, v / DUCKING)
+        out.append((t, v))
+    return out
+
+
+def _intensity(
+    amplitude: list[tuple[float, float]], marks: list[float]
+) -> list[tuple[float, float]]:
+    """Intensity control points for the amplitude breakpoints, the first at each mark ducked.
+
+    The breakpoints at marks are kept (fitted piece by piece between them) so that ducking one
+    lowers the intensity there only, as Meta's converter does.
+    """
+    t = np.array([p[0] for p in amplitude])
+    v = np.array([p[1] for p in amplitude])
+    cuts = np.unique(np.concatenate([[0, len(t) - 1], np.searchsorted(t, marks)]))
+    pieces = [
+        roots_of_lines(t[a : b + 1], v[a : b + 1], WRITE_TOLERANCE)
+        for a, b in zip(cuts, cuts[1:], strict=False)
+    ]
+    if not pieces:
+        pieces = [roots_of_lines(t, v, WRITE_TOLERANCE)]
+    tt = np.concatenate([pieces[0][0]] + [p[0][1:] for p in pieces[1:]])
+    rr = np.concatenate([pieces[0][1]] + [p[1][1:] for p in pieces[1:]])
+    first = np.searchsorted(tt, marks)
+    rr[first] *= DUCKING
+    return _pairs(tt, rr)
+
+
+def design_pattern(design: VibrationDesign, convention: str) -> list[dict[str, Any]]:
+    """AHAP pattern entries for a design, in the given sharpness convention."""
+    amplitude = list(design.amplitude)
+    if len(amplitude) < 2 or amplitude[-1][0] <= amplitude[0][0]:
+        amplitude = [] if design.emphasis else [(0.0, 0.0), (design.duration, 0.0)]
+    pattern: list[dict[str, Any]] = []
+    if amplitude:
+        start, end = amplitude[0][0], amplitude[-1][0]
+        t = start
+        while t < end:
+            length = min(MAX_CONTINUOUS, end - t)
+            pattern.append(_event_json("HapticContinuous", t, 1.0, 0.0, length))
+            t += length
+        marks = sorted({e.time for e in design.emphasis} & {t for t, _ in amplitude})
+        intensity = _intensity(amplitude, marks if convention == "sqrt" else [])
+        pattern += _curves("HapticIntensityControl", intensity)
+        if design.frequency:
+            # Before a curve starts the player uses no offset: the curve spans the events.
+            freq = list(design.frequency)
+            if freq[0][0] > start:
+                freq.insert(0, (start, freq[0][1]))
+            if freq[-1][0] < end:
+                freq.append((end, freq[-1][1]))
+            if convention == "sqrt":
+                freq = _pairs(*roots_of_lines(*np.array(freq).T, WRITE_TOLERANCE))
+            pattern += _curves("HapticSharpnessControl", freq)
+    for e in design.emphasis:
+        pattern.append(_event_json("HapticTransient", e.time, math.sqrt(e.amplitude), e.frequency))
+    pattern.sort(key=lambda p: next(iter(p.values()))["Time"])
+    return pattern
+
+
+class AhapFormat:
+    """Apple AHAP: a pattern read into a vibration design and written back from one."""
+
+    name = "ahap"
+    extensions = (".ahap",)
+    reads = "design"
+    writes = "project"
+    options: tuple[str, ...] = ()
+    max_events = MAX_EVENTS
+
+    def read(self, path: Path, *, progress: Progress | None = None, **options: Any) -> Imported:
+        """The pattern as one vibration design on a drive track."""
+        path = Path(path)
+        design, convention, notes = read_design(path)
+        tile = VibrationTile(design, path.stem, str(path), convention)
+        if progress is not None:
+            progress(1.0)
+        return Imported((Placement(tile, start=0.0, kind=DRIVE),), notes=tuple(notes))
+
+    def write(self, source: Project, path: Path, rate: float | None = None, **options: Any) -> None:
+        """Write the project's sounding drive tracks as an AHAP pattern."""
+        convention = sharpness_convention(source)
+        doc = {
+            "Version": 1.0,
+            "Metadata": {
+                "Project": "",
+                "Created": CREATED,
+                "Description": SQRT_NOTE if convention == "sqrt" else LINEAR_NOTE,
+            },
+            "Pattern": design_pattern(design_of(source, rate=rate), convention),
+        }
+        vib.write_json(doc, path)
 
 
 FORMAT = AhapFormat()

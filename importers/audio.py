@@ -179,6 +179,12 @@ class AudioFormat:
             subtype = choices[0] if choices else sf.default_subtype(container)
         subtype = subtype.upper()
         rate = source.rate
+        if source.axis == "position" and (rate != int(rate) or rate < 1):
+            raise FormatError(
+                f"a position project's rate is {rate:g} samples per radian, and audio files need "
+                f"a whole number: export with --rate N (e.g. --rate {max(1, round(rate))}) to "
+                f"write N samples per radian"
+            )
         if rate != int(rate) or rate < 1:
             raise FormatError(f"audio files need a whole-number rate, not {rate} Hz")
         try:

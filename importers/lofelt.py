@@ -1,9 +1,13 @@
 """Meta Haptics Studio / Lofelt `.haptic` (v1 JSON): amplitude and frequency envelopes, emphasis.
 
-Reading: the amplitude envelope (0..1) and frequency envelope (0..1, mapped to a carrier as
-sharpness is) become one sampled drive clip from the first to the last amplitude breakpoint;
-each emphasis becomes a transient clip at its breakpoint. Writing: the drive layer's analysed
-envelopes, with transients as emphasis on amplitude breakpoints at their times.
+Reading keeps the file's breakpoints and emphasis as one vibration design (timeline.vibration), so
+an unedited import -> export writes the same numbers back. Validity follows Meta's validator: an
+amplitude envelope needs two breakpoints and a positive duration, values lie in 0..1, times never
+go back; what Meta only flags for files from older tools (an emphasis weaker than its breakpoint,
+frequency breakpoints past the amplitude envelope) is kept and reported as a note. Writing takes
+timeline.vibration.design_of of the sounding drive tracks: each emphasis on an amplitude
+breakpoint at its time (one is inserted when none is free there, so two emphases at one time
+both survive), raised to the envelope's level where it was weaker, as Meta's validator requires.
 """
 
 from __future__ import annotations
@@ -14,11 +18,10 @@ from typing import Any
 import numpy as np
 
 from importers import _vibration as vib
-from timeline.formats import FormatError, Imported, Progress
-from timeline.model import DEFAULT_TIME_RATE, Project
-
-DEFAULT_FREQUENCY = 0.5
-SAME_TIME = 1e-9  # s: a transient this close to a breakpoint becomes its emphasis
+from timeline.formats import FormatError, Imported, Placement, Progress
+from timeline.model import Project
+from timeline.vibration import DRIVE, Emphasis, VibrationDesign, VibrationTile, design_of
+from timeline.vibration_design import DEFAULT_FREQUENCY
 
 
 def _breakpoints(items: Any, key: str, where: str) -> list[dict[str, Any]]:
@@ -30,126 +33,149 @@ def _breakpoints(items: Any, key: str, where: str) -> list[dict[str, Any]]:
         here = f"{where}: {key} breakpoint {k + 1}"
         if not isinstance(bp, dict):
             raise FormatError(f"{here} is not an object")
-        time = vib.number(bp.get("time"), f"{here} time", 0.0, vib.MAX_DURATION)
+        for field in ("time", key):
+            if field not in bp:
+                raise FormatError(f"{here} has no {field}")
+        time = vib.number(bp["time"], f"{here} time", 0.0, vib.MAX_DURATION)
         if time < previous:
             raise FormatError(f"{here} goes back in time ({time:g} s after {previous:g} s)")
         previous = time
-        entry = {"time": time, "value": vib.number(bp.get(key), f"{here} {key}", 0.0, 1.0)}
+        entry = {"time": time, "value": vib.number(bp[key], f"{here} {key}", 0.0, 1.0)}
         emphasis = bp.get("emphasis")
         if emphasis is not None:
             if not isinstance(emphasis, dict):
                 raise FormatError(f"{here} emphasis must be an object")
+            for field in ("amplitude", "frequency"):
+                if field not in emphasis:
+                    raise FormatError(f"{here} emphasis has no {field}")
             entry["emphasis"] = (
-                vib.number(emphasis.get("amplitude"), f"{here} emphasis amplitude", 0.0, 1.0),
-                vib.number(emphasis.get("frequency"), f"{here} emphasis frequency", 0.0, 1.0),
+                vib.number(emphasis["amplitude"], f"{here} emphasis amplitude", 0.0, 1.0),
+                vib.number(emphasis["frequency"], f"{here} emphasis frequency", 0.0, 1.0),
             )
         out.append(entry)
     return out
 
 
+def read_design(path: Path) -> tuple[VibrationDesign, list[str]]:
+    """The .haptic file's design, and notes on what Meta's validator would flag."""
+    doc = vib.load_json(path, ".haptic")
+    if not isinstance(doc, dict):
+        raise FormatError(f"{path.name} is not a .haptic file (it is not a JSON object)")
+    _check_version(doc.get("version"), path.name)
+    envelopes = _envelopes(doc, path.name)
+    if "amplitude" not in envelopes:
+        raise FormatError(f"{path.name} has no amplitude envelope")
+    amplitude = _breakpoints(envelopes["amplitude"], "amplitude", path.name)
+    if len(amplitude) < 2:
+        count = "is empty" if not amplitude else "has one breakpoint"
+        raise FormatError(
+            f"{path.name}: the amplitude envelope {count}; it needs at least two to last any time"
+        )
+    first, last = amplitude[0]["time"], amplitude[-1]["time"]
+    if last <= first:
+        raise FormatError(
+            f"{path.name}: the amplitude envelope lasts zero seconds "
+            f"(every breakpoint is at {first:g} s)"
+        )
+    notes: list[str] = []
+    frequency = envelopes.get("frequency")
+    if frequency is None:
+        frequency = []
+        notes.append(f"no frequency envelope: frequency {DEFAULT_FREQUENCY} assumed")
+    else:
+        frequency = _breakpoints(frequency, "frequency", path.name)
+    outside = [b["time"] for b in frequency if not first <= b["time"] <= last]
+    if outside:
+        notes.append(
+            f"{len(outside)} frequency breakpoint(s) lie outside the amplitude envelope "
+            f"({first:g}-{last:g} s), which Meta's validator rejects"
+        )
+    emphasis = []
+    for b in amplitude:
+        if "emphasis" in b:
+            level, freq = b["emphasis"]
+            if level < b["value"]:
+                notes.append(
+                    f"the emphasis at {b['time']:g} s ({level:g}) is weaker than its breakpoint "
+                    f"({b['value']:g}); it is written back at the breakpoint's level"
+                )
+            emphasis.append(Emphasis(b["time"], level, freq))
+    design = VibrationDesign(
+        tuple((b["time"], b["value"]) for b in amplitude),
+        tuple((b["time"], b["value"]) for b in frequency),
+        tuple(emphasis),
+        max(last, *(b["time"] for b in frequency)) if frequency else last,
+    )
+    return design, notes
+
+
+def design_document(design: VibrationDesign) -> dict[str, Any]:
+    """A v1 .haptic document for a design (emphasis on amplitude breakpoints at their times)."""
+    amplitude = [{"time": t, "amplitude": v} for t, v in design.amplitude]
+    if len(amplitude) < 2 or amplitude[-1]["time"] <= amplitude[0]["time"]:
+        # Meta refuses an envelope of fewer than two breakpoints or no length: a silent one
+        # spanning the design stands in, keeping the emphasis and frequency envelope.
+        amplitude = [{"time": 0.0, "amplitude": 0.0}, {"time": design.duration, "amplitude": 0.0}]
+    for e in design.emphasis:
+        _attach(amplitude, e)
+    envelopes: dict[str, Any] = {"amplitude": amplitude}
+    if design.frequency:
+        envelopes["frequency"] = [{"time": t, "frequency": v} for t, v in design.frequency]
+    return {
+        "version": {"major": 1, "minor": 0, "patch": 0},
+        "metadata": {
+            "editor": "haptic-timeline",
+            "author": "",
+            "source": "",
+            "project": "",
+            "tags": [],
+            "description": "",
+        },
+        "signals": {"continuous": {"envelopes": envelopes}},
+    }
+
+
+def _attach(amplitude: list[dict[str, Any]], e: Emphasis) -> None:
+    """Put an emphasis on a free amplitude breakpoint at its time, inserting one if needed."""
+    times = [b["time"] for b in amplitude]
+    lo = int(np.searchsorted(times, e.time, side="left"))
+    hi = int(np.searchsorted(times, e.time, side="right"))
+    free = [k for k in range(lo, hi) if "emphasis" not in amplitude[k]]
+    if free:
+        bp = amplitude[free[0]]
+    else:
+        if e.time > times[-1]:
+            level = 0.0
+        elif hi > lo:
+            level = amplitude[hi - 1]["amplitude"]
+        else:
+            level = float(np.interp(e.time, times, [b["amplitude"] for b in amplitude]))
+        bp = {"time": e.time, "amplitude": level}
+        amplitude.insert(hi, bp)
+    bp["emphasis"] = {"amplitude": max(e.amplitude, bp["amplitude"]), "frequency": e.frequency}
+
+
 class LofeltFormat:
-    """Lofelt / Meta Haptics Studio .haptic: envelopes to drive clips, a drive layer back."""
+    """Lofelt / Meta Haptics Studio .haptic: envelopes kept as a design, written back exactly."""
 
     name = "haptic"
     extensions = (".haptic",)
     reads = "design"
     writes = "project"
-    options = ("rate",)
+    options: tuple[str, ...] = ()
 
-    def read(
-        self,
-        path: Path,
-        *,
-        progress: Progress | None = None,
-        rate: float | None = None,
-        **options: Any,
-    ) -> Imported:
-        """Synthesise the envelopes' drive waveform at `rate` (default 10 kHz)."""
+    def read(self, path: Path, *, progress: Progress | None = None, **options: Any) -> Imported:
+        """The file's envelopes and emphasis as one vibration design on a drive track."""
         path = Path(path)
-        rate = float(rate or DEFAULT_TIME_RATE)
-        doc = vib.load_json(path, ".haptic")
-        if not isinstance(doc, dict):
-            raise FormatError(f"{path.name} is not a .haptic file (it is not a JSON object)")
-        _check_version(doc.get("version"), path.name)
-        envelopes = _envelopes(doc, path.name)
-        amplitude = _breakpoints(envelopes.get("amplitude"), "amplitude", path.name)
-        if not amplitude:
-            raise FormatError(f"{path.name} has an empty amplitude envelope")
-        notes: list[str] = []
-        if "frequency" in envelopes:
-            frequency = _breakpoints(envelopes["frequency"], "frequency", path.name)
-        else:
-            frequency = []
-            notes.append(f"no frequency envelope: sharpness {DEFAULT_FREQUENCY} assumed")
-        placements = []
-        first, last = amplitude[0]["time"], amplitude[-1]["time"]
-        if last > first:
-            n = vib.grid_length(last - first, rate)
-            t = first + np.arange(n) / rate
-            t = t[t <= last]
-            amp = np.interp(t, [b["time"] for b in amplitude], [b["value"] for b in amplitude])
-            if frequency:
-                ft = [b["time"] for b in frequency]
-                sharp = np.interp(t, ft, [b["value"] for b in frequency])
-            else:
-                sharp = np.full(len(t), DEFAULT_FREQUENCY)
-            placements.append(
-                vib.continuous_placement(amp, sharp, rate, first, f"{path.stem}", str(path))
-            )
-        for b in amplitude:
-            if "emphasis" in b:
-                level, sharp_e = b["emphasis"]
-                if level < b["value"]:
-                    notes.append(f"the emphasis at {b['time']:g} s is weaker than its breakpoint")
-                placements.append(vib.transient_placement(b["time"], level, sharp_e))
+        design, notes = read_design(path)
+        tile = VibrationTile(design, path.stem, str(path), "sqrt")
         if progress is not None:
             progress(1.0)
-        return vib.imported(placements, notes, path.name)
+        return Imported((Placement(tile, start=0.0, kind=DRIVE),), notes=tuple(notes))
 
     def write(self, source: Project, path: Path, rate: float | None = None, **options: Any) -> None:
         """Write the project's sounding drive tracks as a v1 .haptic file."""
-        analysis = vib.analyse(source, rate)
-        amplitude = [{"time": t, "amplitude": v} for t, v in analysis.amplitude]
-        for tr in analysis.transients:
-            bp = next((b for b in amplitude if abs(b["time"] - tr.time) <= SAME_TIME), None)
-            if bp is None:
-                bp = {"time": tr.time, "amplitude": _level_at(analysis.amplitude, tr.time)}
-                amplitude.append(bp)
-                amplitude.sort(key=lambda b: b["time"])
-            emphasis = bp.get("emphasis", {"amplitude": 0.0, "frequency": 0.0})
-            if tr.intensity >= emphasis["amplitude"]:
-                bp["emphasis"] = {
-                    "amplitude": round(tr.intensity, 9),
-                    "frequency": round(tr.sharpness, 9),
-                }
-        if not amplitude:
-            raise FormatError("the project's drive layer is silent: there is nothing to export")
-        doc = {
-            "version": {"major": 1, "minor": 0, "patch": 0},
-            "metadata": {
-                "editor": "haptic-timeline",
-                "author": "",
-                "source": "",
-                "project": "",
-                "tags": [],
-                "description": "",
-            },
-            "signals": {
-                "continuous": {
-                    "envelopes": {
-                        "amplitude": amplitude,
-                        "frequency": [{"time": t, "frequency": v} for t, v in analysis.sharpness],
-                    }
-                }
-            },
-        }
-        vib.write_json(doc, path)
-
-
-def _level_at(points: list[tuple[float, float]], time: float) -> float:
-    if not points or time < points[0][0] or time > points[-1][0]:
-        return 0.0
-    return round(float(np.interp(time, [p[0] for p in points], [p[1] for p in points])), 6)
+        vib.write_json(design_document(design_of(source, rate=rate)), path)
 
 
 def _check_version(version: Any, name: str) -> None:

@@ -92,6 +92,11 @@ class Table:
             if not any(_is_number(t) for t in candidate):
                 self.names = candidate
         rows = [ln for ln in lines[first:] if ln.strip() and not ln.strip().startswith(COMMENTS)]
+        if self.rate is None:  # our files put the rate in a comment after the data
+            for line in lines[first:]:
+                match = line.strip().startswith(COMMENTS) and _RATE_COMMENT.search(line)
+                if match:
+                    self.rate = positive_rate(match.group(1), name)
         if not rows:
             raise FormatError(f"{name} has a header but no data rows")
         try:
@@ -190,9 +195,19 @@ class TextFormat:
             header, delimiter, comments = ",".join(names), ",", ""
         else:
             header, delimiter, comments = "\t".join(names), "\t", "% "
+        footer = ""
         if not _axis_gives_rate(table[:, 0], source.rate):
-            header = f"{'' if comments else '# '}rate={source.rate!r}\n{header}"
-        np.savetxt(path, table, fmt="%.17g", delimiter=delimiter, header=header, comments=comments)
+            # last, so the header stays the first line for pandas, numpy and readmatrix
+            footer = f"{'' if comments else '# '}rate={source.rate!r}"
+        np.savetxt(
+            path,
+            table,
+            fmt="%.17g",
+            delimiter=delimiter,
+            header=header,
+            footer=footer,
+            comments=comments,
+        )
 
 
 def _axis_gives_rate(axis: np.ndarray, rate: float) -> bool:

@@ -134,9 +134,11 @@ def export_tile(
 
 
 def _write(fmt: Any, source: Any, path: Path, options: dict[str, Any]) -> None:
+    """Write atomically; the writer is told the final path as `target` (it writes to a temporary
+    beside it), so names inside the file and media written beside it follow the real name."""
     try:
         check_target(path)
-        write_atomically(path, lambda tmp: fmt.write(source, tmp, **options))
+        write_atomically(path, lambda tmp: fmt.write(source, tmp, target=path, **options))
     except HapticTimelineError:
         raise
     except OSError as exc:

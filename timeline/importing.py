@@ -154,17 +154,22 @@ def import_into_project_file(
     path: str | os.PathLike,
     project_path: str | os.PathLike,
     *,
+    kind: str | None = None,
+    at: float = 0.0,
+    gain: float = 1.0,
     progress: Progress | None = None,
-    **kwargs: Any,
-) -> list[str]:
+    **options: Any,
+) -> tuple[list[str], tuple[str, ...]]:
     """Import into a project file (created on the time axis at 10 kHz if missing), atomically.
 
-    On any error the project file is left exactly as it was.
+    Returns the new clip ids and the reader's notes (what it assumed, clamped or skipped). On any
+    error the project file is left exactly as it was.
     """
     from timeline import projectfile
 
     project_path = Path(project_path)
     project = projectfile.load(project_path) if project_path.exists() else edits.new_project()
-    project, clip_ids = import_file(project, path, progress=progress, **kwargs)
+    imported = read_file(path, progress=progress, **options)
+    project, clip_ids = place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
     projectfile.save(project, project_path)
-    return clip_ids
+    return clip_ids, imported.notes

@@ -21,8 +21,11 @@ class TrackKind:
     colour: str
     full_scale: float  # SI value of a tile sample of 1.0 at clip and track gain 1
     axes: tuple[str, ...]  # "time", "position"
-    term: str  # which coefficient of the torque law: d, k, b or m
+    term: str  # which coefficient of the torque law: d, k, b or m ("" for a context track)
     description: str = ""
+    # A context track (e.g. the source sound) is material to design against: drawn and played
+    # for reference, never mixed into the torque law nor exported as haptics.
+    context: bool = False
 
 
 def track_kinds() -> dict[str, TrackKind]:

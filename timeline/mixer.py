@@ -181,13 +181,20 @@ def grid_length(start: float, stop: float, rate: float) -> int:
     return int(round(count))
 
 
-def _layers(project: Project, tracks: Iterable[str] | None) -> dict[str, list[tuple[Track, float]]]:
-    """Kind id -> (track, scale) for the sounding tracks that have clips, in track order."""
+def _layers(
+    project: Project, tracks: Iterable[str] | None, context: bool = False
+) -> dict[str, list[tuple[Track, float]]]:
+    """Kind id -> (track, scale) for the sounding tracks that have clips, in track order.
+
+    Context tracks (kind.context) are left out, or with `context` are the only ones taken.
+    """
     layers: dict[str, list[tuple[Track, float]]] = {}
     for track in active_tracks(project, tracks):
         if not track.clips:
             continue
         kind = track_kind(track.kind)
+        if kind.context != context:
+            continue
         if project.axis not in kind.axes:
             raise HapticTimelineError(
                 f"track {track.name!r} is a {kind.id} track, which a {project.axis} project "
@@ -219,10 +226,12 @@ class Mixer:
         rate: float | None = None,
         quality: str | QualityPreset = DEFAULT_QUALITY,
         tracks: Iterable[str] | None = None,
+        context: bool = False,
     ) -> dict[str, np.ndarray]:
         """Mapping kind id -> samples on [start, stop) at rate, for layers that have clips (SI).
 
-        The arrays are read-only; copy one to change it.
+        Context tracks (the source sound) are never part of it; with `context` only they are
+        rendered, for listening. The arrays are read-only; copy one to change it.
         """
         q = preset(quality)
         rate = float(project.rate if rate is None else rate)
@@ -236,7 +245,7 @@ class Mixer:
         grid = _Grid(start, rate, n, q, astuple(q))
         tile_keys: dict[str, str] = {}
         result = {}
-        layers = _layers(project, tracks)
+        layers = _layers(project, tracks, context)
         memory.require(
             n * len(layers) * PEAK_BYTES_PER_SAMPLE,
             f"rendering {n} samples of {len(layers)} layer(s)",
@@ -517,9 +526,10 @@ def render(
     rate: float | None = None,
     quality: str | QualityPreset = DEFAULT_QUALITY,
     tracks: Iterable[str] | None = None,
+    context: bool = False,
 ) -> dict[str, np.ndarray]:
     """Render a project's layers with the shared mixer (see Mixer.render)."""
-    return _default_mixer.render(project, start, stop, rate, quality, tracks)
+    return _default_mixer.render(project, start, stop, rate, quality, tracks, context)
 
 
 def render_chunks(

@@ -48,17 +48,27 @@ def _unit(value: float, what: str) -> float:
 
 
 def _breakpoints(points, what: str) -> Breakpoints:
-    out = []
-    previous = 0.0
-    for k, (time, value) in enumerate(points):
-        time = float(time)
-        if not (math.isfinite(time) and time >= 0.0):
-            raise EditError(f"{what} breakpoint {k + 1} has time {time!r}; it must be >= 0 s")
-        if time < previous:
-            raise EditError(f"{what} breakpoint {k + 1} goes back in time ({time:g} s)")
-        previous = time
-        out.append((time, _unit(value, f"{what} breakpoint {k + 1}'s value")))
-    return tuple(out)
+    rows = tuple(points)
+    if not rows:
+        return ()
+    try:
+        array = np.array(rows, dtype=np.float64).reshape(len(rows), 2)
+    except (TypeError, ValueError):
+        raise EditError(f"{what} breakpoints must be (time, value) pairs of numbers") from None
+    t, v = array[:, 0], array[:, 1]
+    bad_time = ~(np.isfinite(t) & (t >= 0.0))
+    if bad_time.any():
+        k = int(np.flatnonzero(bad_time)[0])
+        raise EditError(f"{what} breakpoint {k + 1} has time {t[k]!r}; it must be >= 0 s")
+    backwards = np.flatnonzero(np.diff(t) < 0)
+    if len(backwards):
+        k = int(backwards[0]) + 1
+        raise EditError(f"{what} breakpoint {k + 1} goes back in time ({t[k]:g} s)")
+    bad_value = ~(np.isfinite(v) & (v >= 0.0) & (v <= 1.0))
+    if bad_value.any():
+        k = int(np.flatnonzero(bad_value)[0])
+        raise EditError(f"{what} breakpoint {k + 1}'s value must be between 0 and 1, not {v[k]!r}")
+    return tuple(zip(t.tolist(), v.tolist(), strict=True))
 
 
 @dataclass(frozen=True)
@@ -80,7 +90,7 @@ class Emphasis:
     @property
     def length(self) -> float:
         """Seconds the emphasis pulse lasts (EMPHASIS_CYCLES cycles of its carrier)."""
-        return EMPHASIS_CYCLES / float(carrier_hz(self.frequency))
+        return EMPHASIS_CYCLES / (F_MIN + self.frequency * (F_MAX - F_MIN))
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-CORPUS = Path(__file__).resolve().parents[3] / "shared" / "corpus"
+_ROOT = Path(__file__).resolve().parents[2]
+# the shared corpus beside the checkout (../shared) or beside its worktree folder (../../shared)
+CORPUS = (
+    next(
+        (p for p in (_ROOT.parent / "shared", _ROOT.parents[1] / "shared") if p.is_dir()),
+        _ROOT.parent / "shared",
+    )
+    / "corpus"
+)
 RATE = 48_000
 
 

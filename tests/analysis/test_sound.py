@@ -21,7 +21,8 @@ def test_bursts_give_emphasis_at_their_onsets() -> None:
     found = a.emphasis[:, 0]
     assert len(found) == 3
     np.testing.assert_allclose(found, onsets, atol=0.005)
-    assert np.all(a.emphasis[:, 1] > 0.9)  # the normalised peaks
+    # not normalised (Studio's default): the follower's level at each 0.8-peak burst's top
+    assert np.all((a.emphasis[:, 1] > 0.7) & (a.emphasis[:, 1] <= 0.8))
     # silence before the first burst (the level left is the sound's removed DC offset)
     assert value_at(a.amplitude, 0.05) < 5e-3
     assert value_at(a.amplitude, 0.4) < 0.05  # released between bursts
@@ -71,10 +72,11 @@ def test_blocks_give_the_same_design(block: int) -> None:
         len(x),
         level_of(x, AnalysisSettings()),
     )
-    # Summation order differs by block, so near-silent stretches may keep other (equal) points.
+    # Summation order differs by block, so where two triangle areas tie to rounding the runs may
+    # keep different, equally good breakpoints: the curves agree well within the reduction's error.
     grid = np.arange(0, 2.5, 1e-3)
     for ours, theirs in ((parts.amplitude, whole.amplitude), (parts.frequency, whole.frequency)):
-        np.testing.assert_allclose(on_grid(ours, grid), on_grid(theirs, grid), atol=1e-4)
+        np.testing.assert_allclose(on_grid(ours, grid), on_grid(theirs, grid), atol=5e-3)
     np.testing.assert_allclose(parts.emphasis, whole.emphasis, atol=1e-12)
 
 

@@ -13,7 +13,7 @@ PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_s
 TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
           "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency",
           "Scale: full render", "Scale: building through edits", "Scale: project save",
-          "Scale: peak pyramid", "Scale: start-up CPU")  # fmt: skip
+          "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:")  # fmt: skip
 
 
 def test_quick_bench_prints_tables_and_writes_plots(tmp_path: Path) -> None:
@@ -44,4 +44,4 @@ def test_list_names_every_benchmark(capsys) -> None:
     assert main(["bench", "--list"]) == 0
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
-                     "accumulation", "edit-to-feel", "scale"]  # fmt: skip
+                     "accumulation", "edit-to-feel", "scale", "convert", "formats"]  # fmt: skip

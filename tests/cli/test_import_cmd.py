@@ -111,3 +111,34 @@ def test_csv_import_with_column_and_rate(tmp_path):
     project = projectfile.load(htl)
     tile = project.tile(project.tracks[0].clips[0].tile_id)
     assert tile.rate == 100 and list(tile.data) == [0.2, 0.4]
+
+
+def test_import_prints_each_reader_note_on_its_own_line(tmp_path, capsys):
+    import json
+
+    design = {
+        "version": {"major": 1, "minor": 0},
+        "signals": {
+            "continuous": {
+                "envelopes": {
+                    "amplitude": [
+                        {
+                            "time": 0.0,
+                            "amplitude": 0.5,
+                            "emphasis": {"amplitude": 0.2, "frequency": 0.5},
+                        },
+                        {"time": 0.4, "amplitude": 0.5},
+                    ]
+                }
+            }
+        },
+    }
+    src = tmp_path / "weak.haptic"
+    src.write_text(json.dumps(design))
+    assert main(["import", str(src), "--into", str(tmp_path / "p.htl")]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    notes = [line for line in lines if line.startswith("note: ")]
+    assert len(notes) == 2
+    assert "no frequency envelope: frequency 0.5 assumed" in notes[0]
+    assert "emphasis at 0 s (0.2) is weaker than its breakpoint (0.5)" in notes[1]
+    assert lines[0].startswith("imported ") and len(lines) == 3

@@ -76,7 +76,7 @@ def test_info_json(capsys):
     ("argv", "message"),
     [
         (["render", "missing.htl", "-o", "x.csv"], "does not exist"),
-        (["render", "{fan}", "-o", "x.wav"], "audio files need a whole-number rate"),
+        (["render", "{fan}", "-o", "x.wav"], "samples per radian, and audio files need"),
         (["render", "{fan}", "-o", "x.xlsx"], "xlsx"),
         (["render", "{fan}", "-o", "x.csv", "--tracks", "Nope"], "no track named 'Nope'"),
         (["render", "{fan}", "-o", "x.csv", "--start", "3", "--stop", "1"], "stops"),

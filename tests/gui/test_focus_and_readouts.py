@@ -36,6 +36,14 @@ def test_delete_removes_the_spline_point_when_the_curve_has_focus(window, qtbot)
     QTest.keyClick(canvas, Qt.Key.Key_Delete)
     assert len(win.editor.tile.points) == count - 1
     assert win.doc.project.find_clip(c1)[1].id == c1  # the clip was not deleted
+    # with the palette focused, Delete leaves the clips alone and says why
+    tiles = win.palette.tabs.currentWidget()
+    first = tiles.visualItemRect(tiles.item(0)).center()
+    QTest.mouseClick(tiles.viewport(), LEFT, pos=first)
+    assert tiles.hasFocus()
+    QTest.keyClick(tiles, Qt.Key.Key_Delete)
+    assert win.doc.project.find_clip(c1)[1].id == c1
+    assert win.messages.text.startswith("Delete removes clips when the timeline has focus")
     # with the timeline focused, Delete removes the selected clip
     click(win, clip_point(win, c1))
     assert win.view.hasFocus()

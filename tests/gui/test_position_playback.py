@@ -109,3 +109,16 @@ def test_holding_hand_plays_until_stop_and_a_new_hand_applies_at_once(fan_knob, 
     QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)
     assert not win.player.playing
     assert win.transport.play_button.text() == "▶ Play"
+
+
+def test_a_new_hand_in_a_time_project_carries_on_from_where_it_played(window, qtbot):
+    win = window
+    QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)  # from the cursor, 0
+    assert win.player.playing
+    qtbot.waitUntil(lambda: win.view.scene().playhead_u > 0.3, timeout=5000)
+    choose_hand(win, "turn", "45")
+    assert str(win.player.hand) == "turn:45" and win.player.playing
+    qtbot.waitUntil(lambda: win.player.stream.state.position > 0.0, timeout=3000)
+    assert win.player.stream.start > 0.3  # restarted where it was, not from the cursor at 0
+    QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)
+    assert not win.player.playing

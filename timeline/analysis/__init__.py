@@ -2,19 +2,30 @@
 
 Modules, one idea each: settings (what can be tuned, Meta Haptics Studio's defaults), envelope
 (RMS follower), spectrum (centroid and flux per frame), reduce (breakpoint reduction), onsets
-(emphasis), sound (the pipeline), source (reading a sound file in blocks). Pure numpy/numba; no
-Qt and no plugin imports.
+(emphasis), sound (the pipeline), source (reading a sound file in blocks), agreement (measures
+against a reference design). Pure numpy/numba; no Qt and no plugin imports. The names below load
+their module when first used, so `convert --help` starts without numpy.
 """
 
-from timeline.analysis.settings import DEFAULTS, AnalysisSettings, SettingsError
-from timeline.analysis.sound import AnalysisError, SoundAnalysis, analyse, analyse_blocks
+from __future__ import annotations
 
-__all__ = [
-    "DEFAULTS",
-    "AnalysisError",
-    "AnalysisSettings",
-    "SettingsError",
-    "SoundAnalysis",
-    "analyse",
-    "analyse_blocks",
-]
+import importlib
+from typing import Any
+
+_HOMES = {
+    "DEFAULTS": "settings",
+    "AnalysisSettings": "settings",
+    "SettingsError": "settings",
+    "AnalysisError": "sound",
+    "SoundAnalysis": "sound",
+    "analyse": "sound",
+    "analyse_blocks": "sound",
+}
+
+__all__ = sorted(_HOMES)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _HOMES:
+        raise AttributeError(f"module 'timeline.analysis' has no attribute {name!r}")
+    return getattr(importlib.import_module(f"timeline.analysis.{_HOMES[name]}"), name)

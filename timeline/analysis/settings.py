@@ -8,11 +8,18 @@ interfaces/studio/audio_analysis), so a design made here starts where Studio's w
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
+from typing import Any
+
+from timeline.errors import HapticTimelineError
 
 
-class SettingsError(ValueError):
+class SettingsError(HapticTimelineError):
     """A setting outside the range the analysis can use."""
+
+
+def _setting(default: Any, help: str) -> Any:
+    return field(default=default, metadata={"help": help})
 
 
 @dataclass(frozen=True)
@@ -20,40 +27,43 @@ class AnalysisSettings:
     """How a sound becomes amplitude and frequency envelopes and emphasis."""
 
     # amplitude: a windowed RMS, then an attack/hold/release follower, sampled every update
-    rms_window: float = 1e-4  # s: length of the moving RMS window
-    attack: float = 1e-4  # s: the follower reaches 99 % of a rise in this time
-    hold: float = 1.5e-3  # s: the follower holds a peak this long before releasing
-    release: float = 0.1  # s: the follower falls 99 % of the way in this time
-    update: float = 1e-3  # s between analysed amplitude points
-    normalize: bool = True  # scale the sound so its peak (less DC) is `level_db`
-    level_db: float = 0.0  # dBFS peak level after normalisation
-    gain_db: float = 0.0  # gain applied instead when normalize is off
+    rms_window: float = _setting(1e-4, "length of the moving RMS window (s)")
+    attack: float = _setting(1e-4, "time the envelope takes to reach 99 % of a rise (s)")
+    hold: float = _setting(1.5e-3, "time the envelope holds a peak before it falls (s)")
+    release: float = _setting(0.1, "time the envelope takes to fall 99 % of the way (s)")
+    update: float = _setting(1e-3, "time between analysed amplitude points (s)")
+    normalize: bool = _setting(False, "scale the sound so its peak is level_db first")
+    level_db: float = _setting(0.0, "peak level after normalising (dBFS)")
+    gain_db: float = _setting(0.0, "gain applied to the sound when not normalising (dB)")
     # frequency: the spectral centroid below `centroid_lowpass` mapped from a Hz range to 0..1
-    fft_size: int = 1024  # samples per spectrum frame (a power of two)
-    overlap: int = 8  # frames per frame length (hop = fft_size / overlap)
-    centroid_lowpass: float = 1000.0  # Hz: bins above this are ignored by the centroid
-    frequency_min: float = 30.0  # Hz mapped to frequency 0
-    frequency_max: float = 600.0  # Hz mapped to frequency 1
-    output_min: float = 0.0  # frequency value for frequency_min
-    output_max: float = 1.0  # frequency value for frequency_max
+    fft_size: int = _setting(1024, "samples per spectrum frame (a power of two)")
+    overlap: int = _setting(8, "spectrum frames per frame length (hop = fft_size / overlap)")
+    centroid_lowpass: float = _setting(1000.0, "highest frequency the centroid looks at (Hz)")
+    frequency_min: float = _setting(30.0, "centroid mapped to the lowest frequency value (Hz)")
+    frequency_max: float = _setting(600.0, "centroid mapped to the highest frequency value (Hz)")
+    output_min: float = _setting(0.0, "lowest frequency value (0..1)")
+    output_max: float = _setting(1.0, "highest frequency value (0..1)")
     # breakpoint reduction: at most this many per second, then drop what is below the score
-    amplitude_points_per_second: int = 60
-    frequency_points_per_second: int = 60
-    minimum_score: float = 1e-8  # twice the triangle area (value x s) a breakpoint must add
+    amplitude_points_per_second: int = _setting(60, "most amplitude breakpoints kept per second")
+    frequency_points_per_second: int = _setting(60, "most frequency breakpoints kept per second")
+    minimum_score: float = _setting(1e-8, "least change (value x s) a breakpoint must carry")
+    tolerance: float | None = _setting(
+        None, "keep breakpoints within this error of the analysis instead of a count per second"
+    )
     # emphasis: amplitude peaks scored by spectral flux
-    emphasis: bool = True
-    sensitivity: float = 50.0  # %: 0 none, 100 every peak found
-    peak_window: float = 0.1  # s: the least time between two emphasis points
-    minimum_rise: float = 0.1  # amplitude rise into a peak
-    plateau: float = 25.0  # %: how far the amplitude may keep rising after a peak
-    sharpness_min: float = 0.0  # emphasis frequency of the least flux
-    sharpness_max: float = 1.0  # emphasis frequency of the most flux
-    ducking: float = 50.0  # %: amplitude taken from the envelope under an emphasis
+    emphasis: bool = _setting(True, "mark the sound's hits as emphasis")
+    sensitivity: float = _setting(50.0, "share of the peaks found that get emphasis (%)")
+    peak_window: float = _setting(0.1, "least time between two emphasis points (s)")
+    minimum_rise: float = _setting(0.1, "least amplitude rise into an emphasised peak")
+    plateau: float = _setting(25.0, "how far the amplitude may keep rising after a peak (%)")
+    sharpness_min: float = _setting(0.0, "emphasis frequency of the softest hit (0..1)")
+    sharpness_max: float = _setting(1.0, "emphasis frequency of the sharpest hit (0..1)")
+    ducking: float = _setting(50.0, "amplitude taken from the envelope under an emphasis (%)")
 
     def __post_init__(self) -> None:
         for f in fields(self):
             value = getattr(self, f.name)
-            if isinstance(value, bool):
+            if isinstance(value, bool) or value is None:
                 continue
             if not math.isfinite(value):
                 raise SettingsError(f"the analysis setting {f.name} must be a finite number")
@@ -73,12 +83,19 @@ class AnalysisSettings:
         for name in ("amplitude_points_per_second", "frequency_points_per_second"):
             if getattr(self, name) < 2:
                 raise SettingsError(f"the analysis setting {name} must be at least 2")
+        if self.tolerance is not None and not 0 < self.tolerance <= 1:
+            raise SettingsError("the analysis setting tolerance must be above 0 and at most 1")
         for name in ("sensitivity", "plateau", "ducking"):
             if not 0 <= getattr(self, name) <= 100:
                 raise SettingsError(f"the analysis setting {name} is a percentage (0 to 100)")
         for name in ("output_min", "output_max", "sharpness_min", "sharpness_max"):
             if not 0 <= getattr(self, name) <= 1:
                 raise SettingsError(f"the analysis setting {name} must be from 0 to 1")
+
+    @staticmethod
+    def help(name: str) -> str:
+        """What a setting does, in the user's words (for options and the editor's panel)."""
+        return next(f.metadata["help"] for f in fields(AnalysisSettings) if f.name == name)
 
     @property
     def hop(self) -> int:

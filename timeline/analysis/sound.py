@@ -20,9 +20,10 @@ from timeline.analysis.onsets import emphasis
 from timeline.analysis.reduce import RegionReducer
 from timeline.analysis.settings import DEFAULTS, AnalysisSettings
 from timeline.analysis.spectrum import SpectrumFrames, frequency_values
+from timeline.errors import HapticTimelineError
 
 
-class AnalysisError(ValueError):
+class AnalysisError(HapticTimelineError):
     """A sound the analysis cannot use (no samples, no rate, non-finite samples)."""
 
 
@@ -72,26 +73,34 @@ def _check_rate(rate: float) -> float:
 
 
 class _AmplitudeEvents:
-    """Samples the follower every `update` seconds (the output after the sample before)."""
+    """Samples the follower every `update` seconds (the output after the sample before).
+
+    Event k (from 1) comes once ceil(k * update * rate) samples are processed; the last is the
+    first to reach the end of the sound. Events are found block by block, never all at once.
+    """
 
     def __init__(self, rate: float, update: float, length: int) -> None:
-        k = np.arange(1, int(length / (update * rate)) + 3)
-        index = np.ceil(k * update * rate - 1e-9).astype(np.int64)  # samples processed
-        last = int(np.searchsorted(index, length, side="left"))  # the first to reach the end
-        self.index = index[: last + 1]
+        self.step = update * rate  # samples between events
         self.rate = rate
         self.seen = 0
+        k = max(1, math.ceil(length / self.step) - 1)
+        while self._index(k) < length:
+            k += 1
+        while k > 1 and self._index(k - 1) >= length:
+            k -= 1
+        self.last = k
+        self.needed = int(self._index(k))  # samples that must be processed to reach it
 
-    @property
-    def needed(self) -> int:
-        """Samples that must be processed to reach the last event."""
-        return int(self.index[-1])
+    def _index(self, k: np.ndarray | int) -> np.ndarray:
+        return np.ceil(np.asarray(k) * self.step - 1e-9).astype(np.int64)
 
     def take(self, envelope: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.seen, self.seen + len(envelope)
-        a, b = np.searchsorted(self.index, [lo + 1, hi + 1], side="left")
-        picked = self.index[a:b]
         self.seen = hi
+        first = max(1, int(lo / self.step))
+        ks = np.arange(first, min(self.last, int(hi / self.step) + 1) + 1)
+        index = self._index(ks)
+        picked = index[(index > lo) & (index <= hi)]
         return picked / self.rate, np.minimum(envelope[picked - 1 - lo], 1.0)
 
 
@@ -111,8 +120,12 @@ def analyse_blocks(
     )
     spectrum = SpectrumFrames.create(rate, settings)
     events = _AmplitudeEvents(rate, settings.update, length)
-    amp = RegionReducer(settings.amplitude_points_per_second, settings.minimum_score, None)
-    freq = RegionReducer(settings.frequency_points_per_second, settings.minimum_score, None)
+    amp = RegionReducer(
+        settings.amplitude_points_per_second, settings.minimum_score, settings.tolerance
+    )
+    freq = RegionReducer(
+        settings.frequency_points_per_second, settings.minimum_score, settings.tolerance
+    )
     flux_t: list[np.ndarray] = []
     flux_v: list[np.ndarray] = []
 

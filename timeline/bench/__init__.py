@@ -20,6 +20,8 @@ MODULES = (
     "timeline.bench.accumulation",
     "timeline.bench.edit_to_feel",
     "timeline.bench.scale",
+    "timeline.bench.convert",
+    "timeline.bench.formats",
 )
 
 

@@ -10,7 +10,9 @@ from timeline.cli.options import positive
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
-        "export", help="export a project to .ahap, .haptic, .otio, .mat, .csv, .txt or .wav"
+        "export",
+        help="export a project to .ahap, .haptic, .otio, .mat, .csv, .txt, .wav, or firmware "
+        "tables (.h, .json)",
     )
     p.add_argument("project", help="a .htl project file")
     p.add_argument(
@@ -27,12 +29,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         metavar="R",
         help="sample rate of the written layers (default: the project's)",
     )
+    p.add_argument(
+        "--fixed-point",
+        action="store_true",
+        help="firmware tables (.h, .json) as int16 with a scale per table instead of float",
+    )
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     from timeline.exporting import export_project_file
 
-    export_project_file(args.project, args.output, rate=args.rate)
+    options = {"fixed_point": True} if args.fixed_point else {}
+    export_project_file(args.project, args.output, rate=args.rate, **options)
     print(f"exported {args.project} -> {args.output}", file=sys.stderr)
     return 0

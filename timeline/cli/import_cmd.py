@@ -7,6 +7,7 @@ import sys
 import time
 from typing import TextIO
 
+from timeline.cli.notes import print_notes
 from timeline.cli.options import number, positive
 from timeline.kinds import DEFAULT_KIND
 
@@ -80,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
 
     bar = ProgressBar(f"importing {args.file}")
     try:
-        clip_ids = import_into_project_file(
+        clip_ids, notes = import_into_project_file(
             args.file,
             args.into,
             kind=args.track,
@@ -97,4 +98,5 @@ def run(args: argparse.Namespace) -> int:
         f"imported {args.file} into {args.into}: {len(clip_ids)} clip(s) at {args.at:g}",
         file=sys.stderr,
     )
+    print_notes(notes)
     return 0

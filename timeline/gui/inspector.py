@@ -84,7 +84,7 @@ class Inspector(QWidget):
         layout.addWidget(self.title)
         layout.addLayout(self.form)
         layout.addStretch(1)
-        self.setMinimumWidth(190)
+        self.setMinimumWidth(240)
         doc.changed.connect(lambda _: self.refresh())
         doc.selection_changed.connect(self.refresh)
         self.refresh()

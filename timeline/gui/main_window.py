@@ -8,6 +8,7 @@ from pathlib import Path
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
 from PySide6.QtWidgets import (
+    QApplication,
     QFileDialog,
     QGridLayout,
     QMainWindow,
@@ -96,7 +97,7 @@ class MainWindow(QMainWindow):
         self.view.files_dropped.connect(self.import_files)
         self.view.context_requested.connect(self._fill_clip_menu)
         self.palette.range_dropped.connect(self._range_dropped)
-        self.transport.play_button.clicked.connect(self.play_stop)
+        self.transport.play_button.clicked.connect(lambda _=False: self.play_stop())
         self.transport.hand_changed.connect(self._hand_changed)
         self.ruler.clicked.connect(self._ruler_clicked)
         self.ruler.loop_dragged.connect(lambda: self.transport.loop.setChecked(True))
@@ -122,7 +123,7 @@ class MainWindow(QMainWindow):
         bottom.addWidget(self.editor)
         bottom.addWidget(self.inspector)
         bottom.addWidget(self.transport)
-        bottom.setSizes([560, 220, 620])
+        bottom.setSizes([540, 250, 610])
         main = QSplitter(Qt.Orientation.Vertical)
         main.addWidget(top)
         main.addWidget(bottom)
@@ -274,7 +275,14 @@ class MainWindow(QMainWindow):
         self.doc.apply(label, all_of)
 
     def delete(self) -> None:
-        """Remove the selected clips."""
+        """Remove the selected clips, when the timeline (not another region) has focus."""
+        focus = QApplication.focusWidget()
+        elsewhere = (self.palette, self.editor, self.inspector, self.transport, self.headers)
+        if focus is not None and any(r is focus or r.isAncestorOf(focus) for r in elsewhere):
+            self.messages.show_message(
+                "Delete removes clips when the timeline has focus: click a clip first", "error"
+            )
+            return
         ids = list(self.doc.selected_clips)
         if ids:
             self.doc.apply("delete", edits.remove_clips, ids)
@@ -340,8 +348,9 @@ class MainWindow(QMainWindow):
 
     # --- transport -------------------------------------------------------------------------
 
-    def play_stop(self) -> None:
-        """Play the project (or the selected clips' tracks) from the cursor, or stop."""
+    def play_stop(self, start: float | None = None) -> None:
+        """Play the project (or the selected clips' tracks) from the cursor (or `start`; the
+        loop region when looping over one), or stop."""
         if self.player.playing:
             self.player.stop()
             self.transport.show_playing(False)
@@ -356,7 +365,9 @@ class MainWindow(QMainWindow):
                 self.messages.show_message("select clips on the tracks to play", "error")
                 return
         loop = self.transport.loop.isChecked()
-        start = self.view.scene().cursor_u if self.view.scene().cursor_u < project.duration else 0.0
+        if start is None:
+            start = self.view.scene().cursor_u
+        start = start if start < project.duration else 0.0
         stop = None
         if loop and project.loop is not None:
             start, stop = project.loop.start, project.loop.stop
@@ -372,8 +383,9 @@ class MainWindow(QMainWindow):
         if project.axis == "position":
             self.player.play(project, origin=self.player.angle)
         else:
+            at = self.player.stream.state.position if self.player.stream else None
             self.player.stop()
-            self.play_stop()
+            self.play_stop(at)
         self.transport.show_playing(self.player.playing)
 
     def _ruler_clicked(self, u: float) -> None:

@@ -1,0 +1,125 @@
+"""Sound-to-haptic conversion: agreement with Lofelt Studio on the corpus pairs, and speed.
+
+Agreement: each of the ten recorded sounds in the shared corpus (audio-pairs/X.wav) is analysed
+with the default settings and compared with the .haptic Lofelt Studio made from it
+(timeline.analysis.agreement). Speed: 10 s of 48 kHz stereo float WAV converted in-process,
+as a ratio to reading the same file with soundfile.
+"""
+
+from __future__ import annotations
+
+import json
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from timeline.analysis import DEFAULTS, SoundAnalysis
+from timeline.analysis.agreement import Agreement, agreement, on_grid
+from timeline.analysis.source import analyse_file
+from timeline.bench.report import Table, best_time, figure, save
+
+NAME = "convert"
+SUMMARY = "audio-to-haptic analysis: agreement with Lofelt Studio's (corpus pairs) and speed"
+# the shared corpus beside the checkout (../shared), or beside its worktree folder (../../shared)
+_ROOT = Path(__file__).resolve().parents[2]
+PAIRS = (
+    next(
+        (p for p in (_ROOT.parent / "shared", _ROOT.parents[1] / "shared") if p.is_dir()),
+        _ROOT.parent / "shared",
+    )
+    / "corpus"
+    / "audio-pairs"
+)
+PLOTTED = ("Body1", "Glass1", "Wood1")
+
+
+def reference(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A .haptic file's amplitude and frequency breakpoints and emphasis times."""
+    envelopes = json.loads(path.read_text())["signals"]["continuous"]["envelopes"]
+    amplitude = np.array([(b["time"], b["amplitude"]) for b in envelopes["amplitude"]])
+    frequency = np.array([(b["time"], b["frequency"]) for b in envelopes.get("frequency", [])])
+    onsets = np.array([b["time"] for b in envelopes["amplitude"] if "emphasis" in b])
+    return amplitude, frequency.reshape(-1, 2), onsets
+
+
+def pair_agreement(sound: Path) -> tuple[SoundAnalysis, Agreement]:
+    """Analyse one corpus sound and compare it with Lofelt Studio's design of it."""
+    ours = analyse_file(sound, DEFAULTS)
+    ref_amp, ref_freq, ref_onsets = reference(sound.with_suffix(".haptic"))
+    found = agreement(ours.amplitude, ours.frequency, ours.emphasis[:, 0], ref_amp, ref_freq,
+                      ref_onsets)  # fmt: skip
+    return ours, found
+
+
+def agreement_table(out: Path) -> Table:
+    table = Table(
+        "Convert: agreement with Lofelt Studio's analysis (default settings, 1 ms grid)",
+        ["sound", "amplitude r", "amplitude MAE", "onset F1 (20 ms)", "frequency MAE"],
+    )
+    sounds = sorted(PAIRS.glob("*.wav"))
+    if not sounds:
+        table.notes.append(f"the corpus pairs are not present ({PAIRS})")
+        return table
+    results = {s.stem: pair_agreement(s) for s in sounds}
+    rows = np.array([[a.amplitude_r, a.amplitude_mae, a.onset_f1, a.frequency_mae]
+                     for _, a in results.values()])  # fmt: skip
+    for name, (_, a) in results.items():
+        table.rows.append([name, a.amplitude_r, a.amplitude_mae, a.onset_f1, a.frequency_mae])
+    table.rows.append(["median", *np.median(rows, axis=0)])
+    table.rows.append(["mean", *np.mean(rows, axis=0)])
+    table.notes.append("targets: r median >= 0.95, MAE median <= 0.04, onset F1 mean >= 0.7")
+    _plot(results, out)
+    return table
+
+
+def _plot(results: dict[str, tuple[SoundAnalysis, Agreement]], out: Path) -> None:
+    shown = [n for n in PLOTTED if n in results]
+    if not shown:
+        return
+    fig, axes = figure(9.0, 2.2 * len(shown), ncols=1)
+    fig.clf()
+    for row, name in enumerate(shown):
+        ours, _ = results[name]
+        ref_amp, _, ref_onsets = reference(PAIRS / f"{name}.haptic")
+        ax = fig.add_subplot(len(shown), 1, row + 1)
+        grid = np.arange(0.0, max(ours.duration, ref_amp[-1, 0]), 1e-3)
+        ax.plot(grid, on_grid(ref_amp, grid), color="#888", lw=1.5, label="Lofelt Studio")
+        ax.plot(grid, on_grid(ours.amplitude, grid), color="#e4572e", lw=1.0, label="convert")
+        ax.vlines(ref_onsets, 0, 1, color="#888", lw=0.8, linestyles="dotted")
+        ax.vlines(ours.emphasis[:, 0], 0, 1, color="#e4572e", lw=0.8, linestyles="dashed")
+        ax.set_ylim(0, 1.05)
+        ax.set_ylabel(name)
+        ax.grid(True, alpha=0.3)
+        if row == 0:
+            ax.legend(loc="upper right", fontsize=8)
+    fig.axes[-1].set_xlabel("time (s); lines: emphasis (dotted Lofelt, dashed convert)")
+    save(fig, out, "convert_envelopes")
+
+
+def speed_table(quick: bool) -> Table:
+    table = Table(
+        "Convert: 10 s of 48 kHz stereo (float WAV), in-process",
+        ["step", "best ms", "ratio to soundfile read"],
+    )
+    rng = np.random.default_rng(7)
+    t = np.arange(480_000) / 48_000
+    bursts = np.sin(2 * np.pi * 180 * t) * np.exp(-((t % 0.5) / 0.03))
+    stereo = np.column_stack([bursts, 0.5 * bursts]) + 0.01 * rng.normal(size=(len(t), 2))
+    repeat = 3 if quick else 9
+    import soundfile as sf
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "ten_seconds.wav"
+        sf.write(path, (0.5 * stereo).astype(np.float32), 48_000, subtype="FLOAT")
+        analyse_file(path)  # compiled loops loaded before timing
+        read = best_time(lambda: sf.read(path, dtype="float32"), repeat)
+        convert = best_time(lambda: analyse_file(path), repeat)
+    table.rows.append(["soundfile.read (float32)", 1e3 * read, 1.0])
+    table.rows.append(["analyse_file (defaults)", 1e3 * convert, convert / read])
+    table.notes.append("target: conversion at most 100 ms")
+    return table
+
+
+def run(quick: bool, out: Path) -> list[Table]:
+    return [agreement_table(out), speed_table(quick)]

@@ -1,0 +1,133 @@
+"""Import and export speed of the vibration formats (.haptic, AHAP) on long designs.
+
+Each time is also given as a ratio to parsing the same file with json.loads in the same process
+(the least any reader must pay), so machines of different speed compare.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from timeline import edits, exporting, importing
+from timeline.bench.report import Table, best_time
+from timeline.formats import FormatError, all_formats
+
+NAME = "formats"
+SUMMARY = ".haptic and AHAP import/export time of long designs, as ratios to a JSON parse"
+HAPTIC_SECONDS = 120.0
+HAPTIC_BREAKPOINTS = 6_881  # amplitude and frequency together, as in a 120 s Studio export
+AHAP_EVENTS = 440_000  # issue 11's target: imported in <= 5 s, or refused by a documented limit
+
+
+def long_haptic(seconds: float = HAPTIC_SECONDS, breakpoints: int = HAPTIC_BREAKPOINTS) -> dict:
+    """A seeded .haptic document: breakpoints split between the two envelopes, some emphasis."""
+    rng = np.random.default_rng(14)
+    n_amp = breakpoints // 2 + 1
+    n_freq = breakpoints - n_amp
+
+    def envelope(n: int, key: str) -> list[dict]:
+        times = np.sort(rng.uniform(0.0, seconds, n))
+        times[0], times[-1] = 0.0, seconds
+        values = np.round(rng.uniform(0.0, 1.0, n), 6)
+        return [{"time": float(t), key: float(v)} for t, v in zip(times, values, strict=True)]
+
+    amplitude = envelope(n_amp, "amplitude")
+    for bp in amplitude[:: max(1, n_amp // 50)]:
+        bp["emphasis"] = {"amplitude": 1.0, "frequency": 0.7}
+    return {
+        "version": {"major": 1, "minor": 0, "patch": 0},
+        "signals": {
+            "continuous": {
+                "envelopes": {"amplitude": amplitude, "frequency": envelope(n_freq, "frequency")}
+            }
+        },
+    }
+
+
+def many_events_ahap(events: int = AHAP_EVENTS) -> dict:
+    """A seeded AHAP of transients and short continuous events, half each, 1 ms apart."""
+    rng = np.random.default_rng(14)
+    pattern = []
+    for k in range(events):
+        kind = "HapticTransient" if k % 2 else "HapticContinuous"
+        event = {
+            "Time": round(k * 0.001, 6),
+            "EventType": kind,
+            "EventParameters": [
+                {"ParameterID": "HapticIntensity", "ParameterValue": round(rng.uniform(), 4)},
+                {"ParameterID": "HapticSharpness", "ParameterValue": round(rng.uniform(), 4)},
+            ],
+        }
+        if kind == "HapticContinuous":
+            event["EventDuration"] = 0.0008
+        pattern.append({"Event": event})
+    return {"Version": 1.0, "Pattern": pattern}
+
+
+def _try(path: Path) -> None:
+    with contextlib.suppress(FormatError):
+        importing.read_file(path)
+
+
+def _row(name: str, path: Path, work, repeat: int) -> list[object]:
+    text = path.read_bytes()
+    parse = best_time(lambda: json.loads(text), repeat)
+    seconds = best_time(work, repeat)
+    return [name, len(text) / 1e6, 1e3 * parse, 1e3 * seconds, seconds / parse]
+
+
+def run(quick: bool, out: Path) -> list[Table]:
+    table = Table(
+        "Vibration formats: import and export (best of runs)",
+        ["case", "file MB", "json.loads ms", "ms", "ratio to json.loads"],
+    )
+    repeat = 1 if quick else 7
+    breakpoints = HAPTIC_BREAKPOINTS // 10 if quick else HAPTIC_BREAKPOINTS
+    events = AHAP_EVENTS // 20 if quick else AHAP_EVENTS
+    with tempfile.TemporaryDirectory() as folder:
+        folder = Path(folder)
+        haptic = folder / "long.haptic"
+        haptic.write_text(json.dumps(long_haptic(breakpoints=breakpoints), indent=2))
+        table.rows.append(
+            _row(
+                f".haptic of {breakpoints:,} breakpoints import",
+                haptic,
+                lambda: importing.read_file(haptic),
+                repeat,
+            )
+        )
+        project, _ = importing.import_file(edits.new_project(templates=False), haptic)
+        for ext in (".haptic", ".ahap"):
+            target = folder / f"out{ext}"
+            table.rows.append(
+                _row(
+                    f"that design export {ext}",
+                    haptic,
+                    lambda t=target: exporting.export_project(project, t),
+                    repeat,
+                )
+            )
+        limit = all_formats()["ahap"].max_events
+        sizes = [limit // 50] if quick else [limit, AHAP_EVENTS]
+        for events in sizes:
+            ahap = folder / f"many{events}.ahap"
+            ahap.write_text(json.dumps(many_events_ahap(events), separators=(",", ":")))
+            verdict = "refused" if events > limit else "import"
+            table.rows.append(
+                _row(f"AHAP of {events:,} events: {verdict}", ahap, lambda a=ahap: _try(a), 1)
+            )
+    table.notes.append(
+        f"targets: the {HAPTIC_BREAKPOINTS:,}-breakpoint .haptic imports in <= 0.3 s and exports "
+        f"in <= 0.5 s; {AHAP_EVENTS:,} AHAP events import in <= 5 s or are refused by a "
+        f"documented limit (the AHAP reader's max_events)"
+    )
+    if quick:
+        table.notes.append(
+            "--quick: a tenth of the breakpoints, a fiftieth of the AHAP limit, no refusal case"
+        )
+    return [table]
