@@ -1,29 +1,36 @@
 """OpenTimelineIO (.otio): each track and clip with its timing, beside video and audio.
 
-Each project track becomes one OTIO Audio track, or several ("lanes") when its clips overlap,
-since OTIO tracks play clips one after another. Clip timing is written at the project's rate
-for editors; our exact clip fields, track settings and tiles (sampled data base64-encoded) are
-kept in `metadata["haptic_timeline"]`, which is what reading uses. Only files this program
-wrote can be read back: other OTIO files carry no haptic tiles.
+The timeline is named after the project (its title, else the file's name). Each project track
+becomes one OTIO Audio track, or several ("lanes") when its clips overlap, since OTIO tracks play
+clips one after another. On the time axis each track is also rendered beside the .otio file as
+`<name>-<track>.wav` (float, at the project's rate) and, for a drive track, `<name>-<track>.haptic`;
+every clip points at them with ExternalReferences (the WAV as its default media, the .haptic as
+a second reference named "haptic"), its source range being its span on the timeline. Our exact
+clip fields, track settings and tiles (sampled data base64-encoded) are kept in
+`metadata["haptic_timeline"]`, which is what reading uses. Only files this program wrote can be
+read back: other OTIO files carry no haptic tiles.
 """
 
 from __future__ import annotations
 
 import base64
-from dataclasses import asdict, fields
+import re
+from dataclasses import asdict, fields, replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import opentimelineio as otio
 
-from timeline import sandbox
+from timeline import exporting, sandbox
 from timeline.errors import HapticTimelineError
 from timeline.formats import FormatError, Imported, Placement, Progress, TrackInfo
 from timeline.model import Clip, Fade, Project, Track
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
+from timeline.vibration_tile import VibrationTile
 
 KEY = "haptic_timeline"
+DEFAULT = "DEFAULT_MEDIA"  # OTIO's key for a clip's default media reference
 VERSION = 1
 _CLIP_FIELDS = [f.name for f in fields(Clip) if f.name not in ("id", "tile_id", "start")]
 
@@ -39,6 +46,8 @@ def encode_tile(tile: Tile) -> dict[str, Any]:
             "source": tile.source,
             "samples": base64.b64encode(raw).decode("ascii"),
         }
+    if isinstance(tile, VibrationTile):
+        return tile.as_json()
     if isinstance(tile, SplineTile):
         return {
             "type": "spline",
@@ -70,11 +79,24 @@ def decode_tile(data: Any) -> Tile:
         if kind == "generator":
             params = tuple((str(k), float(v)) for k, v in dict(data["params"]).items())
             return GeneratorTile(data["generator"], data["duration"], params, data["name"])
+        if kind == "vibration":
+            return VibrationTile.from_json(_plain(data))
     except HapticTimelineError as exc:
         raise FormatError(f"a tile in the OTIO file is invalid: {exc}") from None
     except (KeyError, TypeError, ValueError, AttributeError) as exc:
         raise FormatError(f"a tile in the OTIO file is malformed ({type(exc).__name__})") from None
     raise FormatError(f"a tile in the OTIO file has an unknown type {kind!r}")
+
+
+def _plain(value: Any) -> Any:
+    """OTIO's metadata containers as plain dicts, lists and numbers."""
+    if isinstance(value, str):
+        return value
+    if hasattr(value, "items"):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if hasattr(value, "__iter__"):
+        return [_plain(v) for v in value]
+    return value
 
 
 def _lanes(track: Track) -> list[list[Clip]]:
@@ -94,6 +116,32 @@ def _rt(seconds: float, rate: float) -> otio.opentime.RationalTime:
     return otio.opentime.RationalTime(seconds * rate, rate)
 
 
+def _file_part(text: str) -> str:
+    return re.sub(r"[^0-9A-Za-z._-]+", "_", text).strip("._") or "track"
+
+
+def _media(
+    project: Project, track: Track, target: Path
+) -> dict[str, otio.schema.ExternalReference]:
+    """Render one track beside the .otio (WAV, and .haptic for drive); references to the files."""
+    if project.axis != "time" or not track.clips:
+        return {}
+    alone = replace(project, tracks=(replace(track, mute=False, solo=False),))
+    stem = f"{target.stem}-{_file_part(track.name)}"
+    available = otio.opentime.TimeRange(_rt(0.0, project.rate), _rt(alone.duration, project.rate))
+    refs = {}
+    wav = target.with_name(stem + ".wav")
+    exporting.write_layers(exporting.project_layers(alone), wav)
+    refs[DEFAULT] = otio.schema.ExternalReference(target_url=wav.name, available_range=available)
+    if track.kind == "drive":
+        haptic = target.with_name(stem + ".haptic")
+        exporting.export_project(alone, haptic)
+        refs["haptic"] = otio.schema.ExternalReference(
+            target_url=haptic.name, available_range=available
+        )
+    return refs
+
+
 def _clip_fields(clip: Clip) -> dict[str, Any]:
     out = {name: getattr(clip, name) for name in _CLIP_FIELDS}
     out["fade_in"], out["fade_out"] = asdict(clip.fade_in), asdict(clip.fade_out)
@@ -110,9 +158,14 @@ class OtioFormat:
     options = ()
 
     def write(self, source: Project, path: Path, **options: Any) -> None:
-        """Write the project's tracks as OTIO tracks, with our fields in metadata."""
+        """Write the project's tracks as OTIO tracks, with our fields in metadata, and each
+        track's rendered media beside the file."""
         rate = source.rate
-        timeline = otio.schema.Timeline(name=Path(path).stem)
+        target = Path(options.get("target", path))
+        title = source.metadata.get("title")
+        timeline = otio.schema.Timeline(
+            name=title if isinstance(title, str) and title else target.stem
+        )
         used = {c.tile_id for t in source.tracks for c in t.clips}
         timeline.metadata[KEY] = {
             "version": VERSION,
@@ -121,6 +174,7 @@ class OtioFormat:
             "tiles": {tid: encode_tile(source.tile(tid)) for tid in sorted(used)},
         }
         for track in source.tracks:
+            media = _media(source, track, target)
             for lane_index, lane in enumerate(_lanes(track)):
                 out = otio.schema.Track(name=track.name, kind=otio.schema.TrackKind.Audio)
                 out.metadata[KEY] = {
@@ -140,9 +194,12 @@ class OtioFormat:
                         name=source.tile(clip.tile_id).name,
                         media_reference=otio.schema.MissingReference(),
                         source_range=otio.opentime.TimeRange(
-                            _rt(clip.source_in, rate), _rt(clip.duration, rate)
+                            _rt(clip.start if media else clip.source_in, rate),
+                            _rt(clip.duration, rate),
                         ),
                     )
+                    if media:
+                        item.set_media_references({k: v.clone() for k, v in media.items()}, DEFAULT)
                     item.metadata[KEY] = {
                         "tile": clip.tile_id,
                         "start": clip.start,

@@ -25,7 +25,6 @@ from timeline.markers import LoopRegion, Marker, markers_to_json
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.project_fields import FieldError
 from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
-from timeline.vibration_design import Emphasis, VibrationDesign
 from timeline.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
@@ -82,17 +81,7 @@ def _tile_to_json(tile: Tile, media: dict[str, Any]) -> dict[str, Any]:
             "points": [list(p) for p in tile.points],
         }
     if isinstance(tile, VibrationTile):
-        design = tile.design
-        return {
-            "type": "vibration",
-            "name": tile.name,
-            "source": tile.source,
-            "sharpness": tile.sharpness,
-            "duration": design.duration,
-            "amplitude": [list(p) for p in design.amplitude],
-            "frequency": [list(p) for p in design.frequency],
-            "emphasis": [[e.time, e.amplitude, e.frequency] for e in design.emphasis],
-        }
+        return tile.as_json()
     return {
         "type": "generator",
         "name": tile.name,
@@ -271,28 +260,8 @@ def _tile(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
             name,
         )
     if kind == "vibration":
-        return _vibration_from_json(obj, name, where)
+        return VibrationTile.from_json(obj)
     raise FieldError(f"{where} has unknown tile type {kind!r}")
-
-
-def _number_rows(obj: Any, key: str, width: int, where: str) -> list[tuple[float, ...]]:
-    rows = fields.get(obj, key, list, where)
-    if not all(isinstance(r, list) and len(r) == width for r in rows):
-        raise FieldError(f"{where}.{key} should be lists of {width} numbers")
-    return [
-        tuple(fields.as_number(x, f"{where}.{key}[{i}]") for x in r) for i, r in enumerate(rows)
-    ]
-
-
-def _vibration_from_json(obj: Any, name: str, where: str) -> VibrationTile:
-    design = VibrationDesign(
-        tuple(_number_rows(obj, "amplitude", 2, where)),  # type: ignore[arg-type]
-        tuple(_number_rows(obj, "frequency", 2, where)),  # type: ignore[arg-type]
-        tuple(Emphasis(*e) for e in _number_rows(obj, "emphasis", 3, where)),
-        fields.number(obj, "duration", where, positive=True),
-    )
-    source = fields.text(obj, "source", where, "")
-    return VibrationTile(design, name, source, fields.get(obj, "sharpness", str, where))
 
 
 def _built(make: Callable[[], Any], where: str) -> Any:

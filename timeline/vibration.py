@@ -235,14 +235,22 @@ def _cut(points, lo: float, hi: float, outside: float | None) -> list[tuple[floa
 
 
 def _faded(amp: list[tuple[float, float]], m: _Mapping) -> list[tuple[float, float]]:
-    """The amplitude breakpoints times the clip's fades, reduced within EDIT_TOLERANCE."""
+    """The amplitude breakpoints times the clip's fades, reduced within EDIT_TOLERANCE.
+
+    Every breakpoint is kept in the samples (both sides of a step), with the fade sampled every
+    FADE_GRID seconds between them.
+    """
     if len(amp) < 2:
         return [(t, v * float(m.fade(np.array([t]))[0])) for t, v in amp]
-    t0, t1 = amp[0][0], amp[-1][0]
-    grid = np.arange(t0, t1, FADE_GRID)
-    t = np.unique(np.concatenate([grid, [p[0] for p in amp]]))
-    v = np.interp(t, [p[0] for p in amp], [p[1] for p in amp]) * m.fade(t)
-    return simplify(t, v, EDIT_TOLERANCE)
+    bt = np.array([p[0] for p in amp])
+    bv = np.array([p[1] for p in amp])
+    grid = np.arange(bt[0], bt[-1], FADE_GRID)
+    grid = grid[~np.isin(grid, bt)]
+    t = np.concatenate([bt, grid])
+    v = np.concatenate([bv, np.interp(grid, bt, bv)])
+    order = np.argsort(t, kind="stable")  # breakpoints first, so steps keep their order
+    t, v = t[order], v[order]
+    return simplify(t, v * m.fade(t), EDIT_TOLERANCE)
 
 
 def _overlapping(pieces: list[VibrationDesign]) -> bool:

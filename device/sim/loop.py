@@ -9,11 +9,19 @@ block (`State`, in this order):
 * prev_meas: the last encoder reading relative to the anchor;
 * vel: the low-passed backward-difference velocity estimate;
 * prev_vel, acc: the previous velocity estimate and the low-passed acceleration estimate
-  (updated only when the project has a mass layer).
+  (updated only when the project has a mass layer);
+* pending: the torque computed in the last period, applied in this one when the firmware has a
+  one-period computation delay;
+* est_theta: the tracking observer's angle estimate (used only when it estimates; then vel and
+  acc are its velocity and acceleration estimates, observer.py);
+* est_dist, applied: reserved (0) and the motor torque applied in the last period.
 
 Each period: read the quantised encoder, update the estimators, compute tau = d - k*theta -
 b*theta_dot - m*theta_ddot (coefficients per period, or T, B, M looked up linearly at the angle
-with k = 0), scale it by the watchdog's gain, clamp it (NaN becomes 0), add the hand's push,
+with k = 0), scale it by the watchdog's gain, clamp it (NaN becomes 0); with a computation
+delay apply the torque computed one period earlier instead (it arrives a period late, as on
+firmware that computes during a period and writes the amplifier at the next tick); add the
+hand's push,
 add Coulomb friction as the torque (within its level) that would stop the rotor in the period,
 and advance the mechanics by the plant's linear map (plant.py, its theta and omega rows).
 """
@@ -23,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-State = tuple[float, float, float, float, float, float, float, float]
+State = tuple[float, float, float, float, float, float, float, float, float, float, float, float]
 
 
 # cache: compiled once per machine (and source change); error_model="numpy": IEEE division, no
@@ -36,10 +44,11 @@ def servo_loop(
     gain: np.ndarray,
     use_mass: bool,
     lookup: tuple[float, float, float],
-    firmware: tuple[float, float, float, float, float, float, float],
+    firmware: tuple[float, float, float, float, float, float, float, float],
     plant: tuple[float, float, float, float, float, float, float, float, float, float],
     hand: tuple[float, float, float, float],
     state: State,
+    observer: tuple[float, ...],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, State]:
     """Run len(gain) servo periods; return the true angle before each period, the motor torque,
     the Coulomb friction torque, the count of NaN torques replaced by 0, and the new state.
@@ -48,13 +57,20 @@ def servo_loop(
     tables: rows T, B, M over angle (position projects; no columns in time projects), looked up
     at origin + angle, sample j at table angle start + j/rate, `lookup` = (origin, start, rate);
     firmware: rate, period, quantum, max torque, Coulomb level, velocity and acceleration filter
-    gains; plant: the theta row then the omega row of the map over z = [theta, omega, u, r, v];
-    hand: push torque, push ramp, turning speed, seconds since the play started.
+    gains, computation delay (0 or 1 period); plant: the theta row then the omega row of the map
+    over z = [theta, omega, u, r, v];
+    hand: push torque, push ramp, turning speed, seconds since the play started; observer: on
+    (1.0) or off (0.0), then the tracking model's 3x3 matrix A by rows and the gains L
+    (observer.py).
     """
-    rate, period, quantum, tmax, coulomb, av, aa = firmware
+    rate, period, quantum, tmax, coulomb, av, aa, delay = firmware
     t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = plant
     push, push_ramp, speed, elapsed = hand
-    theta, omega, r, anchor, prev_meas, vel, prev_vel, acc = state
+    (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending,
+     est_theta, est_dist, applied) = state  # fmt: skip
+    observe = observer[0] != 0.0
+    a00, a01, a02, a10, a11, a12, a20, a21, a22 = observer[1:10]
+    l0, l1, l2 = observer[10:13]
     origin, tstart, trate = lookup
     in_table = tables.shape[1] > 0
     tlast = tables.shape[1] - 1
@@ -67,11 +83,20 @@ def servo_loop(
     d = k = b = m = 0.0
     for i in range(n):
         meas = ((theta * inv_q + 0.5) // 1.0 * quantum if quantum else theta) - anchor
-        vel += av * ((meas - prev_meas) * rate - vel)
+        if observe:  # predict with the model, correct with the reading (observer.py)
+            p0 = a00 * est_theta + a01 * vel + a02 * acc
+            p1 = a10 * est_theta + a11 * vel + a12 * acc
+            p2 = a20 * est_theta + a21 * vel + a22 * acc
+            miss = meas - p0
+            est_theta = p0 + l0 * miss
+            vel = p1 + l1 * miss
+            acc = p2 + l2 * miss
+        else:
+            vel += av * ((meas - prev_meas) * rate - vel)
+            if use_mass:
+                acc += aa * ((vel - prev_vel) * rate - acc)
+                prev_vel = vel
         prev_meas = meas
-        if use_mass:
-            acc += aa * ((vel - prev_vel) * rate - acc)
-            prev_vel = vel
         if in_table:  # T(theta) - B(theta)*theta_dot - M(theta)*theta_ddot, linear lookup
             x = (origin + meas - tstart) * trate
             j = tlast if x >= tlast else (int(x) if x > 0.0 else 0)  # NaN reads sample 0
@@ -93,6 +118,9 @@ def servo_loop(
         elif tau != tau:
             tau = 0.0
             nonfinite += 1
+        if delay:
+            tau, pending = pending, tau
+        applied = tau
         u = tau
         if push:
             u += push if elapsed >= push_ramp else push * elapsed / push_ramp
@@ -114,5 +142,18 @@ def servo_loop(
         taus,
         frictions,
         nonfinite,
-        (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc),
+        (
+            theta,
+            omega,
+            r,
+            anchor,
+            prev_meas,
+            vel,
+            prev_vel,
+            acc,
+            pending,
+            est_theta,
+            est_dist,
+            applied,
+        ),
     )

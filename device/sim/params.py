@@ -26,6 +26,9 @@ class KnobParams:
     coulomb: float = 1e-3  # N*m Coulomb friction
     velocity_cutoff: float = 2_000.0  # Hz first-order low-pass on the velocity estimate; 0 = none
     acceleration_cutoff: float = 200.0  # Hz low-pass on the acceleration estimate; 0 = none
+    estimator: str = "filter"  # "filter" (differences, low-passed) or "tracking" (observer.py)
+    observer_bandwidth: float = 1000.0  # Hz: where an observer's three poles sit (observer.py)
+    delay: int = 0  # servo periods between reading the encoder and applying its torque (0 or 1)
     watchdog_timeout: float = 0.005  # s without a block before the torque starts ramping down
     watchdog_ramp: float = 0.010  # s from the last torque to zero
     firmware: str = "sim-1.0"
@@ -33,18 +36,28 @@ class KnobParams:
     def __post_init__(self) -> None:
         for name in self.__dataclass_fields__:
             value = getattr(self, name)
-            if name == "firmware":
+            if name in ("firmware", "estimator"):
                 continue
             if not math.isfinite(value) or value < 0:
                 raise DeviceError(f"the knob's {name.replace('_', ' ')} must be >= 0, not {value}")
+        if self.estimator not in ("filter", "tracking"):
+            raise DeviceError(f"the knob's estimator is filter or tracking, not {self.estimator!r}")
+        if self.delay not in (0, 1):
+            raise DeviceError(f"the knob's delay is 0 or 1 servo period, not {self.delay}")
         if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
             raise DeviceError("the knob's rate, max torque and inertia must be positive")
 
     @property
     def dynamics(self) -> Dynamics:
         """The rotor and servo loop as the design checks see them."""
+        tracking = self.observer_bandwidth if self.estimator == "tracking" else 0.0
         return Dynamics(
-            self.inertia, self.viscous, 0, self.velocity_cutoff, self.acceleration_cutoff
+            self.inertia,
+            self.viscous,
+            int(self.delay),
+            self.velocity_cutoff,
+            self.acceleration_cutoff,
+            tracking,
         )
 
     @property

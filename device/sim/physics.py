@@ -19,6 +19,7 @@ import numpy as np
 from scipy.signal import lfilter
 
 from device.sim.loop import State, servo_loop
+from device.sim.observer import OFF, observer_tuple
 from device.sim.params import KnobParams
 from device.sim.plant import step_matrix, system_matrix
 from device.sim.stability import stability_flags
@@ -50,6 +51,10 @@ class KnobPhysics:
         self.omega = 0.0  # true speed (rad/s)
         self._maps: dict[tuple[float, ...], tuple[float, ...]] = {}
         self._tables: tuple[PositionTable | None, np.ndarray] = (None, NO_TABLES)
+        p = self.params
+        self._observer = (
+            observer_tuple(p.period, p.observer_bandwidth) if p.estimator == "tracking" else OFF
+        )
         self.start(Hand("hold"))
 
     # --- set-up ---------------------------------------------------------------------------
@@ -81,6 +86,8 @@ class KnobPhysics:
         self.vel = 0.0
         self.prev_vel = 0.0
         self.acc = 0.0
+        self.pending = 0.0  # the torque computed last period (applied now, with a delay)
+        self.observed = (0.0, 0.0, 0.0)  # the observer's angle, (reserved), last motor torque
         self.idle = 0  # samples since the last block arrived
         self.last: CoefficientBlock | PositionProgram | None = None
         self.failed: str | None = None
@@ -193,13 +200,23 @@ class KnobPhysics:
             coeffs, tables, use_mass = NO_COEFFS, self._table_rows(tab), tab.mass is not None
             lookup = _floats(origin, tab.start, tab.rate)
         filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
-        firmware = _floats(p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters)
+        firmware = _floats(p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay)
         motion = _floats(hand.push_torque, hand.push_ramp, hand.turn_speed, self.samples * p.period)
-        state = _floats(self.theta, self.omega, self.grip_target, self.anchor,
-                        self.prev_meas, self.vel, self.prev_vel, self.acc)  # fmt: skip
+        state = _floats(self.theta, self.omega, self.grip_target, self.anchor, self.prev_meas,
+                        self.vel, self.prev_vel, self.acc, self.pending,
+                        *self.observed)  # fmt: skip
         gain = np.ones(n) if gain is None else gain
         thetas, taus, frictions, nonfinite, state = servo_loop(
-            coeffs, tables, gain, use_mass, lookup, firmware, self._map, motion, state
+            coeffs,
+            tables,
+            gain,
+            use_mass,
+            lookup,
+            firmware,
+            self._map,
+            motion,
+            state,
+            self._observer,
         )
         return self._finish(thetas, taus, frictions, state, nonfinite)
 
@@ -246,7 +263,8 @@ class KnobPhysics:
         dissipated = p.viscous * step * step * p.rate - frictions * step
         energy = self.energy + np.cumsum(taus * step - dissipated)
         self.theta, self.omega, self.grip_target = theta, omega, grip_target
-        self.prev_meas, self.vel, self.prev_vel, self.acc = estimators
+        self.prev_meas, self.vel, self.prev_vel, self.acc, self.pending, *observed = estimators
+        self.observed = tuple(observed)
         self.energy = float(energy[-1]) if energy.size else self.energy
         time = (self.samples + np.arange(done)) * p.period
         self.samples += done

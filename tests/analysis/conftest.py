@@ -7,15 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-_ROOT = Path(__file__).resolve().parents[2]
-# the shared corpus beside the checkout (../shared) or beside its worktree folder (../../shared)
-CORPUS = (
-    next(
-        (p for p in (_ROOT.parent / "shared", _ROOT.parents[1] / "shared") if p.is_dir()),
-        _ROOT.parent / "shared",
-    )
-    / "corpus"
-)
+from timeline.bench.convert import PAIRS
+
+CORPUS = PAIRS.parent  # the shared corpus, found by the benchmark that measures against it
 RATE = 48_000
 
 

@@ -112,3 +112,17 @@ def test_bad_samples_are_one_sentence() -> None:
         analyse(np.zeros(0), RATE)
     with pytest.raises(AnalysisError, match="sample rate"):
         analyse(np.zeros(10), 0.0)
+
+
+def test_float32_spectra_match_float64(monkeypatch) -> None:
+    from timeline.analysis import spectrum
+
+    x = tone_bursts([0.05, 0.3], 220.0, 0.6) + 0.01 * np.random.default_rng(2).normal(size=28_800)
+    fast = analyse(x, RATE, AnalysisSettings(sensitivity=100))
+    monkeypatch.setattr(spectrum, "FRAME_DTYPE", np.float64)
+    exact = analyse(x, RATE, AnalysisSettings(sensitivity=100))
+    grid = np.arange(0, 0.6, 1e-3)
+    np.testing.assert_allclose(
+        on_grid(fast.frequency, grid), on_grid(exact.frequency, grid), atol=1e-5
+    )
+    np.testing.assert_allclose(fast.emphasis, exact.emphasis, atol=1e-5)

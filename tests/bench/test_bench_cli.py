@@ -44,4 +44,5 @@ def test_list_names_every_benchmark(capsys) -> None:
     assert main(["bench", "--list"]) == 0
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
-                     "accumulation", "edit-to-feel", "scale", "convert", "formats"]  # fmt: skip
+                     "estimator", "accumulation", "edit-to-feel", "scale", "convert",
+                     "formats"]  # fmt: skip

@@ -194,3 +194,45 @@ def test_any_design_survives_placing_saving_and_loading(design, at):
     if at == 0.0:
         assert design_of(q) == design
     assert isinstance(next(iter(q.tiles.values())), VibrationTile)
+
+
+coarse_times = st.lists(st.floats(0.0, 5.0).map(lambda t: round(t, 3)), max_size=12).map(sorted)
+
+
+@st.composite
+def coarse_designs(draw):
+    """Designs on a 1 ms grid, so a step's two sides are told apart after shifting."""
+    amp = [(t, draw(unit)) for t in draw(coarse_times)]
+    accents = [Emphasis(t, draw(unit), draw(unit)) for t in draw(coarse_times)]
+    return VibrationDesign(tuple(amp), ((0.0, 0.5),), tuple(accents), 5.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    coarse_designs(),
+    st.floats(0.0, 1.0),
+    st.floats(0.0, 2.0).map(lambda t: round(t, 3)),
+    st.floats(0.0, 0.4).map(lambda t: round(t, 3)),
+    st.floats(0.0, 0.4).map(lambda t: round(t, 3)),
+)
+def test_gain_trim_and_fades_read_back_as_the_edited_envelope(design, gain, at, cut, fade):
+    p = _project(design, at=at)
+    clip = p.tracks[0].clips[0].id
+    p = edits.set_clip_gain(p, clip, gain)
+    p = edits.trim_clip(p, clip, at + cut, None)
+    length = p.tracks[0].clips[0].duration
+    p = edits.set_fade(p, clip, "out", min(fade, length), "equal-power")
+    read = design_of(p)
+    c = p.tracks[0].clips[0]
+    t = np.linspace(c.start, c.start + min(c.duration, design.duration - cut), 2001)
+    x = np.clip((c.end - t) / c.fade_out.length, 0.0, 1.0) if c.fade_out.length else 1.0
+    expected = np.minimum(1.0, design.amplitude_at(t - at) * gain) * (
+        np.sin(0.5 * np.pi * x) if c.fade_out.length else 1.0
+    )
+    # away from breakpoints, where a step or the envelope's end is a jump and rounding of the
+    # shifted time decides the side
+    away = np.all(
+        np.abs(t[:, None] - (at + np.array([[b[0] for b in design.amplitude]]))) > 1e-6, 1
+    )
+    assert np.max(np.abs(read.amplitude_at(t) - expected)[away]) <= EDIT_TOLERANCE + 1e-9
+    assert all(c.start <= e.time < c.end for e in read.emphasis)

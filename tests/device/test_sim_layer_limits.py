@@ -59,9 +59,9 @@ def test_flags_fire_just_above_the_limit(layer: str, fraction: float, flagged: b
         assert flag.margins[0] == pytest.approx(abs(0.001 * limit), rel=1e-6)
 
 
-def _kicked(layer: str, value: float, seconds: float = 0.4) -> np.ndarray:
+def _kicked(layer: str, value: float, seconds: float = 0.4, delay: int = 0) -> np.ndarray:
     """A free linear knob rendering one layer at a constant value after a short kick: its torque."""
-    p = KnobParams(**LINEAR)
+    p = KnobParams(**LINEAR, delay=delay)
     knob = KnobPhysics(p)
     knob.start(Hand("free"))
     n = int(seconds * p.rate)
@@ -70,7 +70,8 @@ def _kicked(layer: str, value: float, seconds: float = 0.4) -> np.ndarray:
     zero = np.zeros(n)
     b = np.full(n, value) if layer == "b" else zero
     m = np.full(n, value) if layer == "m" else zero
-    tel = knob.run_block(CoefficientBlock(d, zero, b, m))
+    k = np.full(n, value) if layer == "k" else zero
+    tel = knob.run_block(CoefficientBlock(d, k, b, m))
     return tel.torque
 
 
@@ -90,3 +91,56 @@ def test_knob_rings_down_below_the_limit_and_chatters_above(layer: str, fraction
         assert late < 0.5 * early
     else:  # the kick of 1 mNm grows into chatter at the amplifier's limit
         assert late > 0.9 * p.max_torque and late > 100 * np.abs(torque[10:20]).max()
+
+
+@pytest.mark.parametrize("layer", ["k", "b", "m"])
+@pytest.mark.parametrize("fraction", [0.95, 1.05])
+def test_a_one_period_delay_lowers_the_limits_the_knob_obeys(layer: str, fraction: float) -> None:
+    p = KnobParams(**LINEAR, delay=1)
+    dyn, period = p.dynamics, p.period
+    assert dyn.delay == 1
+    limit = {
+        "k": servo.passive_stiffness(dyn.damping, 0.0, period, 1),
+        "b": servo.damping_limit(dyn, period),
+        "m": servo.mass_limits(dyn, period)[1],
+    }[layer]
+    torque = _kicked(layer, fraction * limit, seconds=3.0 if layer == "k" else 0.4, delay=1)
+    early = np.abs(torque[10:1000]).max()
+    late = np.abs(torque[-800:]).max()
+    if fraction < 1:  # the spring's 40 Hz ring decays slowly this close to the edge
+        assert late < 0.8 * early
+    else:
+        assert late > 1.2 * early or late > 0.9 * p.max_torque  # grows, or chatters at the clamp
+
+
+def test_the_delay_holds_the_torque_one_period() -> None:
+    now, late = KnobPhysics(KnobParams(**LINEAR)), KnobPhysics(KnobParams(**LINEAR, delay=1))
+    d = np.array([0.0, 0.01, 0.02, 0.0, 0.0])
+    zero = np.zeros(5)
+    a = now.run_block(CoefficientBlock(d, zero, zero)).torque
+    b = late.run_block(CoefficientBlock(d, zero, zero)).torque
+    np.testing.assert_array_equal(b, np.concatenate([[0.0], a[:-1]]))
+
+
+@pytest.mark.parametrize("layer", ["b", "m"])
+@pytest.mark.parametrize("fraction", [0.95, 1.05])
+def test_with_the_tracking_observer_the_limits_follow_it(layer: str, fraction: float) -> None:
+    p = KnobParams(**LINEAR, estimator="tracking")
+    dyn, period = p.dynamics, p.period
+    assert dyn.observer_bandwidth == 1000.0
+    limit = servo.damping_limit(dyn, period) if layer == "b" else servo.mass_limits(dyn, period)[1]
+    knob = KnobPhysics(p)
+    knob.start(Hand("free"))
+    n = 4000
+    d = np.zeros(n)
+    d[:5] = 1e-3
+    zero = np.zeros(n)
+    value = np.full(n, fraction * limit)
+    tel = knob.run_block(
+        CoefficientBlock(d, zero, value if layer == "b" else zero, value if layer == "m" else zero)
+    )
+    early, late = np.abs(tel.torque[10:1000]).max(), np.abs(tel.torque[-800:]).max()
+    if fraction < 1:
+        assert late < 0.5 * early
+    else:
+        assert late > 1.2 * early or late > 0.9 * p.max_torque

@@ -38,7 +38,8 @@ def _count_input(qapp):
                 return False
             address = getCppPointer(event)[0]
             # an ignored event travels on to the parents: the same event, counted once
-            if address == last[0] and name == last[1] and _contains(obj, last[2]):
+            propagated = obj is not last[2] and _contains(obj, last[2])
+            if address == last[0] and name == last[1] and propagated:
                 last[2] = obj
                 return False
             last[:] = [address, name, obj]

@@ -158,7 +158,9 @@ def test_loop_region_dragged_on_the_ruler_loops_playback(window, qtbot):
     seen: list[float] = []
     win.player.position.connect(seen.append)
     QTest.keyClick(win, Qt.Key.Key_Space)
-    qtbot.waitUntil(lambda: any(b < a for a, b in zip(seen, seen[1:], strict=False)), timeout=5000)
+    qtbot.waitUntil(
+        lambda: any(b < a for a, b in zip(seen, seen[1:], strict=False)), timeout=15_000
+    )
     QTest.keyClick(win, Qt.Key.Key_Space)
     assert min(seen) >= loop.start - 1e-9 and max(seen) < loop.stop
     # right-click menu clears it

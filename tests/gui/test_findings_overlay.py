@@ -46,3 +46,17 @@ def test_shading_follows_zoom_and_goes_with_the_clip(stiff_window, qtbot) -> Non
     assert win.messages.text == "No device or perception limit crossed"
     qtbot.keyClick(win.view.viewport(), Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
     qtbot.waitUntil(lambda: win.findings.settled and len(win.findings.shades) == 1, timeout=20_000)
+
+
+def test_a_design_too_long_to_check_live_says_so_once(window, qtbot, monkeypatch) -> None:
+    from timeline.gui import findings_overlay
+
+    win = window
+    monkeypatch.setattr(findings_overlay, "MAX_LIVE_SAMPLES", 1000)  # the 2.5 s design: 25,000
+    win.findings.schedule()
+    qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
+    assert win.messages.text.startswith("Cannot check the design: the design is too long")
+    shown = len(win.messages.history)
+    win.findings.schedule()
+    qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
+    assert len(win.messages.history) == shown and not win.findings.shades

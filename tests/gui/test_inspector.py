@@ -100,7 +100,7 @@ def test_a_parameter_edit_is_felt_while_playing(window, qtbot):
     assert loud > 0
     type_into(win.inspector.boxes["amplitude"], "0.25")
     assert stream.state.version == version + 1
-    qtbot.waitUntil(lambda: stream.state.live_version == version + 1, timeout=3000)
+    qtbot.waitUntil(lambda: stream.state.live_version == version + 1, timeout=15_000)
     quiet = np.abs(stream.render(win.doc.project, 0.5, 1.5).d).max()
     assert quiet == pytest.approx(0.25 * loud, rel=1e-9)
     QTest.keyClick(win, Qt.Key.Key_Space)

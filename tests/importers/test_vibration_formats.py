@@ -106,7 +106,7 @@ def test_corpus_files_import_or_are_rejected_with_the_reason(corpus):
 
 def test_an_unedited_haptic_is_written_back_exactly(corpus, tmp_path):
     files = _valid(corpus, "*/*.haptic")
-    assert len(files) > 40
+    assert len(files) > 50
     for path in files:
         source = json.loads(path.read_text())["signals"]["continuous"]["envelopes"]
         written = _export(_read(path), tmp_path / "out.haptic")["signals"]["continuous"]

@@ -107,3 +107,15 @@ def test_tones_closer_than_a_frequency_jnd() -> None:
         p, _ = edits.add_clip(p, track, tile, at, gain=0.5)
     hits = found(check(p, KNOB), "sub-jnd")
     assert len(hits) == 1 and "frequency" in hits[0].what and hits[0].start == 0.0
+
+
+def test_a_crescendo_in_steps_below_a_jnd_is_one_finding() -> None:
+    p = edits.new_project("time")
+    p, track = edits.add_track(p, "drive", "drive")
+    p, tile = edits.add_tile(p, generator("sine", 0.1, "tap", frequency=175.0))
+    for i in range(5):  # +1 dB a step: 4 steps below the 2.2 dB JND, 4 dB end to end
+        p, _ = edits.add_clip(p, track, tile, 0.2 * i, gain=0.3 * 10 ** (i / 20))
+    p, _ = edits.add_clip(p, track, tile, 1.0, gain=0.3 * 10 ** (8 / 20))  # +4 dB: felt
+    (hit,) = found(check(p, KNOB), "sub-jnd")
+    assert hit.what.startswith("5 clips from") and (hit.start, hit.stop) == (0.0, 0.9)
+    assert hit.value == pytest.approx(1.0, abs=0.01) and hit.unit == "dB"

@@ -103,3 +103,13 @@ def test_one_project_compares_its_variants(capsys) -> None:
     assert "B: stronger tap" in out and "too alike" not in out  # 3.5 dB on the tap: 1.6 JND
     assert cli.main(["compare", str(examples / "rising_resistance.htl")]) == 1
     assert "needs two icons" in capsys.readouterr().err
+
+
+def test_a_slow_alternation_is_not_a_constant() -> None:
+    p = edits.new_project("time")
+    p, track = edits.add_track(p, "drive", "drive")
+    p, tile = edits.add_tile(p, generator("square", 1.0, "5 Hz", frequency=5.0))
+    p, _ = edits.add_clip(p, track, tile, 0.0, gain=0.5)
+    square = compare([("square", p), ("level", buzz(shape="level", seconds=1.0))])
+    assert square.features[0].frequency == pytest.approx(5.0, rel=0.05)  # longer than a frame
+    assert square.parts[0][1]["frequency"] > 5.0

@@ -10,7 +10,7 @@ envelopes start at 0 s and end together at the end of the sound.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -110,8 +110,12 @@ def analyse_blocks(
     length: int,
     level: Level,
     settings: AnalysisSettings = DEFAULTS,
+    progress: Callable[[float], None] | None = None,
 ) -> SoundAnalysis:
-    """Analyse a mono sound of `length` samples arriving as blocks, preprocessed by `level`."""
+    """Analyse a mono sound of `length` samples arriving as blocks, preprocessed by `level`.
+
+    `progress` hears the fraction of the sound analysed after each block (it may raise to stop).
+    """
     rate = _check_rate(rate)
     if length <= 0:
         raise AnalysisError("the sound has no samples")
@@ -143,6 +147,8 @@ def analyse_blocks(
         fed += len(x)
         amp.add(*events.take(follower.process(x)))
         spectral(*spectrum.process(x))
+        if progress is not None:
+            progress(min(fed / length, 1.0))
     if fed != length:
         raise AnalysisError(f"the sound ended after {fed} of its {length} samples")
     tail = np.zeros(max(0, events.needed - length))

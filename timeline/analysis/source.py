@@ -7,7 +7,7 @@ sound. A file that is not audio, or is truncated, is one clear sentence.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import numpy as np
@@ -50,8 +50,15 @@ def _level(path: Path, settings: AnalysisSettings) -> tuple[Level, int]:
     return Level.of(total / count, peak, settings), count
 
 
-def analyse_file(path: str | Path, settings: AnalysisSettings = DEFAULTS) -> SoundAnalysis:
-    """Analyse a sound file (see timeline.analysis.sound) in bounded memory."""
+def analyse_file(
+    path: str | Path,
+    settings: AnalysisSettings = DEFAULTS,
+    progress: Callable[[float], None] | None = None,
+) -> SoundAnalysis:
+    """Analyse a sound file (see timeline.analysis.sound) in bounded memory.
+
+    `progress` hears the fraction done (0..1) after each block; it may raise to stop.
+    """
     path = Path(path)
     if not path.is_file():
         raise AnalysisError(f"there is no sound file {path}")
@@ -59,7 +66,7 @@ def analyse_file(path: str | Path, settings: AnalysisSettings = DEFAULTS) -> Sou
         rate = float(f.samplerate)
     level, length = _level(path, settings)
     try:
-        return analyse_blocks(mono_blocks(path), rate, length, level, settings)
+        return analyse_blocks(mono_blocks(path), rate, length, level, settings, progress)
     except sf.LibsndfileError as exc:
         reason = exc.error_string
     raise AnalysisError(f"{path.name} could not be read to its end ({reason})")

@@ -17,6 +17,7 @@ MODULES = (
     "timeline.bench.resampler",
     "timeline.bench.sim_integrators",
     "timeline.bench.sim_speed",
+    "timeline.bench.estimator",
     "timeline.bench.accumulation",
     "timeline.bench.edit_to_feel",
     "timeline.bench.scale",

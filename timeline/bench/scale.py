@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from timeline import edits, projectfile
-from timeline.bench.report import Table, best_time, figure, save
+from timeline.bench.report import Table, best_cpu_time, best_time, figure, save
 from timeline.bench.scenes import LargeSpec, large_project
 from timeline.tiles import generator
 
@@ -133,21 +133,10 @@ def render_costs(clips: int, seconds: float, repeat: int) -> dict[str, float]:
     project = large_project(LargeSpec(64, clips, seconds, 0, off_grid=True))
     total = clip_samples(project, project.rate)
     Mixer().render(project, 0.0, 1.0)  # first touch of imports and caches, not timed
-    full = _best_cpu(lambda: Mixer().render(project, 0.0, seconds), repeat)
+    full = best_cpu_time(lambda: Mixer().render(project, 0.0, seconds), repeat)
     n = int(round(seconds * project.rate))
-    base = _best_cpu(lambda: memory_pass(total, n, 1), repeat)
+    base = best_cpu_time(lambda: memory_pass(total, n, 1), repeat)
     return {"clips": clips, "full": full, "pass": base}
-
-
-def _best_cpu(fn, repeat: int) -> float:
-    """Least process CPU time of `repeat` calls: one thread's work, whatever else the machine runs
-    (the mixer uses no threads, so its CPU time is its cost)."""
-    best = float("inf")
-    for _ in range(repeat):
-        start = time.process_time()
-        fn()
-        best = min(best, time.process_time() - start)
-    return best
 
 
 def run(quick: bool, out: Path) -> list[Table]:

@@ -57,7 +57,7 @@ class ProgressBar:
     """A one-line progress bar on a stream, shown only once a read has taken half a second."""
 
     def __init__(self, label: str, stream: TextIO | None = None, delay: float = 0.5) -> None:
-        # stderr as it is now, not as it was when this module was imported
+        # sys.stderr as it is now, not as it was when this module was imported
         self.label, self.stream, self.delay = label, stream or sys.stderr, delay
         self.started = time.monotonic()
         self.shown = False

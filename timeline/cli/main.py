@@ -20,6 +20,7 @@ VERB_MODULES = [
     "timeline.cli.devices_cmd",
     "timeline.cli.import_cmd",
     "timeline.cli.export_cmd",
+    "timeline.cli.convert_cmd",
     "timeline.cli.bench_cmd",
     "timeline.cli.check_cmd",
     "timeline.cli.compare_cmd",

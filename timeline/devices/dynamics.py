@@ -28,7 +28,9 @@ class Dynamics:
     inertia J (kg*m^2) and physical viscous damping b (N*m*s/rad) of the rotor and knob; `delay`
     whole servo periods between reading the encoder and applying the torque computed from it;
     the first-order low-pass cut-offs (Hz, 0 = none) on the backward-difference velocity and on
-    the acceleration estimate (the difference of the velocity estimate).
+    the acceleration estimate (the difference of the velocity estimate); or, with
+    `observer_bandwidth` above 0, a kinematic tracking observer of angle, velocity and
+    acceleration with all three poles at that bandwidth.
     """
 
     inertia: float
@@ -36,6 +38,7 @@ class Dynamics:
     delay: int = 0
     velocity_cutoff: float = 0.0
     acceleration_cutoff: float = 0.0
+    observer_bandwidth: float = 0.0  # Hz; above 0, a tracking observer estimates instead
 
     def __post_init__(self) -> None:
         _check(
@@ -45,6 +48,7 @@ class Dynamics:
             delay=self.delay,
             velocity_cutoff=self.velocity_cutoff,
             acceleration_cutoff=self.acceleration_cutoff,
+            observer_bandwidth=self.observer_bandwidth,
         )
         if self.inertia <= 0:
             raise DeviceError(f"a device's inertia must be positive, not {self.inertia}")

@@ -21,6 +21,7 @@ from timeline.limits.check import Report, check
 from timeline.model import Project
 
 DELAY_MS = 250  # after the last edit
+MAX_LIVE_SAMPLES = 6_000_000  # 10 minutes at 10 kHz: longer designs are checked by the CLI
 COLOURS = {"device": QColor(230, 126, 34, 60), "perception": QColor(142, 68, 173, 50)}
 EDGES = {"device": QColor(211, 84, 0), "perception": QColor(110, 44, 140)}
 LAYER_OF = {"amplitude": "d", "frequency": "d"}  # a sub-JND measure's layer
@@ -107,6 +108,11 @@ class FindingsOverlay(QObject):
         except HapticTimelineError as exc:
             self.ready.emit(exc, version)
             return
+        if project.axis == "time" and project.duration * info.rate > MAX_LIVE_SAMPLES:
+            self.ready.emit(HapticTimelineError(
+                f"the design is too long to check while editing ({project.duration:.0f} s); "
+                "run haptic-timeline check on it"), version)  # fmt: skip
+            return
         future = self._pool.submit(_check, project, info)
         future.add_done_callback(lambda f: self.ready.emit(f.result(), version))
 
@@ -115,7 +121,11 @@ class FindingsOverlay(QObject):
             return  # an edit came since: its own check follows
         self._done = version
         if isinstance(result, HapticTimelineError):
-            self.messages.show_message(f"Cannot check the design: {result}", "error")
+            text = f"Cannot check the design: {result}"
+            if self.report is None or self.report.notes != (text,):
+                self.messages.show_message(text, "error")
+            self.report = Report((), (text,))
+            self._draw(self.doc.project, self.report)
             return
         changed = self.report is None or _keys(self.report) != _keys(result)
         self.report = result

@@ -38,6 +38,7 @@ from .player import Player
 from .recent import recent_files, remember
 from .ruler import Ruler
 from .similarity_map import similarity_window
+from .sound_import import SoundImport
 from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
@@ -72,6 +73,7 @@ class MainWindow(QMainWindow):
         self.doc.selection_changed.connect(self._update_actions)
         self.player.position.connect(self._follow_playhead)
         self.player.finished.connect(self._play_finished)
+        self.player.notice.connect(lambda text: self.messages.show_message(text, "error"))
         self._update_title()
         self._update_actions()
         self.transport.show_position(0.0, self.doc.project.axis)
@@ -158,6 +160,8 @@ class MainWindow(QMainWindow):
         self._action(file, "Save &as…", self.save_as_dialog, "Ctrl+Shift+S")
         file.addSeparator()
         self._action(file, "&Import…", self.import_dialog, "Ctrl+Shift+I")
+        self.sound_import = SoundImport(self)
+        self.sound_import.add_actions(file)
         self._action(file, "&Export…", self.export_dialog, "Ctrl+E")
         file.addSeparator()
         self._action(file, "&Quit", self.close, QKeySequence.StandardKey.Quit)
@@ -490,7 +494,13 @@ class MainWindow(QMainWindow):
         return project.tracks[0].id if project.tracks else ""
 
     def import_files(self, paths: list[Path], track_id: str, at: float) -> None:
-        """Import files in the background onto a track (its kind gives them meaning)."""
+        """Import files in the background onto a track (its kind gives them meaning).
+
+        Sounds dropped with Alt held are analysed into haptic designs instead.
+        """
+        if self.sound_import.wants_drop():
+            self.sound_import.convert_files(paths, track_id, at)
+            return
         for path in paths:
             job = import_job(path)
             job.done.connect(

@@ -22,6 +22,7 @@ from timeline import playback
 from timeline.devices import Device, Hand, LiveTelemetry, device_names, open_device
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
+from timeline.sound_out import SoundOut
 
 from .live_stream import LiveStream, LiveTables
 
@@ -42,6 +43,7 @@ class Player(QObject):
     telemetry = Signal(object, object)  # angle (rad; table angle in position mode), torque (N*m)
     position = Signal(float)
     finished = Signal(str)  # "" or an error sentence
+    notice = Signal(str)  # something the user should know that does not stop playing
 
     def __init__(self, parent: QObject | None = None) -> None:
         super().__init__(parent)
@@ -61,6 +63,7 @@ class Player(QObject):
         self._poll = QTimer(self)
         self._poll.setInterval(33)
         self._poll.timeout.connect(self._drain)
+        self.sound = SoundOut()  # the source sound (audio tracks) heard with the haptics
 
     @staticmethod
     def devices() -> list[str]:
@@ -124,6 +127,10 @@ class Player(QObject):
         self._thread = threading.Thread(target=self._run, args=(device, program, hand), daemon=True)
         self._thread.start()
         self._poll.start()
+        if self.stream is not None:
+            note = self.sound.play(project, start, stop, loop)
+            if note:
+                self.notice.emit(note)
 
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:
@@ -164,6 +171,7 @@ class Player(QObject):
         if self._outcome is not None and not self.playing:
             outcome, self._outcome = self._outcome, None
             self._poll.stop()
+            self.sound.stop()
             self.finished.emit(outcome)
 
     @property
@@ -177,12 +185,14 @@ class Player(QObject):
             return
         if self.stream is not None:
             self.stream.set_project(project)
+            self.sound.follow(project)
         elif self.tables is not None:
             self.tables.set_project(project)
 
     def stop(self) -> None:
         """Stop playing and wait for the device to finish its block."""
         self._halt.set()
+        self.sound.stop()
         if self.stream is not None:
             self.stream.stop_stream()
         if self._thread is not None:

@@ -26,6 +26,7 @@ from timeline.errors import HapticTimelineError
 from timeline.model import Project
 from timeline.similarity.compare import Comparison, compare
 from timeline.similarity.distance import ALIKE
+from timeline.similarity.labels import label_groups
 
 MARGIN = 40.0
 ALIKE_COLOUR = QColor("#c0392b")
@@ -81,9 +82,13 @@ class MapCanvas(QWidget):
             painter.drawText((points[a] + points[b]) / 2 + QPointF(-10, 18), f"{d:.2f}")
         painter.setPen(QPen(QColor("#2c3e50"), 1.0))
         painter.setBrush(QColor("#2c3e50"))
-        for name, p in points.items():
+        for p in points.values():
             painter.drawEllipse(p, 5.0, 5.0)
-            painter.drawText(p + QPointF(8, -6), name)
+        xy = np.array([[p.x(), -p.y()] for p in points.values()])
+        for n, (names, (x, y)) in enumerate(label_groups(list(points), xy)):
+            painter.drawText(
+                QPointF(x, -y) + QPointF(8, -6 if n % 2 == 0 else 14), " / ".join(names)
+            )
         bar = self.jnd_pixels()
         y = self.height() - 14.0
         painter.setPen(QPen(QColor("#555555"), 2.0))

@@ -10,6 +10,8 @@ from timeline.limits.design import sample
 from timeline.limits.findings import Finding
 from timeline.model import Project
 
+MAX_CLIPS_COMPARED = 500  # beyond this, clip-to-clip JND steps are not checked (say so)
+
 
 @dataclass(frozen=True)
 class Report:
@@ -45,6 +47,11 @@ def check(
     if project.axis == "position":
         notes.append("position project: gaps, detection and slew depend on the turning speed "
                      "and are checked on time projects only")  # fmt: skip
+    clips = sum(len(t.clips) for t in project.tracks)
+    compare_clips = clips <= MAX_CLIPS_COMPARED
+    if not compare_clips:
+        notes.append(f"{clips} clips: steps between clips are compared up to "
+                     f"{MAX_CLIPS_COMPARED} clips only")  # fmt: skip
     findings = [
         *device_checks.saturation(design, info),
         *device_checks.stability(design, info),
@@ -52,7 +59,11 @@ def check(
         *device_checks.actuator_band(design, info, actuator),
         *perception_checks.below_detection(design, info, actuator),
         *perception_checks.short_gaps(design, info),
-        *perception_checks.sub_jnd_clips(project, info, design.rate, quality),
+        *(
+            perception_checks.sub_jnd_clips(project, info, design.rate, quality)
+            if compare_clips
+            else []
+        ),  # fmt: skip
         *perception_checks.sub_jnd_variants(project, info, design.rate, quality),
     ]
     findings.sort(key=lambda f: (f.start, f.kind))

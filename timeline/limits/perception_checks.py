@@ -159,34 +159,49 @@ def sub_jnd_variants(
 
 
 def sub_jnd_clips(project: Project, info: DeviceInfo, rate: float, quality: str) -> list[Finding]:
-    """Pairs of clips on tracks of one kind, of one length, that differ by less than a JND.
+    """Steps between consecutive clips of one kind and length that are smaller than a JND.
 
-    Identical clips are a deliberate repeat and are left alone.
+    Clips of each kind are taken in timeline order; a clip and the next one of the same length
+    that differ, but by less than a JND in every measure, are a step the hand cannot feel (an
+    intended crescendo or contrast that is not there). Runs of such steps make one finding.
+    Identical clips are a deliberate repeat and are left alone. Each clip is rendered once, on
+    its own, so the check grows with the number of clips, not with its square.
     """
-    groups: dict[tuple[str, int], list[tuple[str, Sampled]]] = {}
+    by_kind: dict[str, list[tuple[float, str, Sampled]]] = {}
     for track in project.tracks:
+        lone = replace(track, mute=False, solo=False)
         for clip in track.clips:
-            lone = replace(track, clips=(clip,), mute=False, solo=False)
-            alone = replace(project, tracks=(lone,))
+            alone = replace(project, tracks=(replace(lone, clips=(replace(clip, start=0.0),)),))
             design = sample(alone, rate, quality)
-            if not design.length:
-                continue
-            key = (track.kind, round(clip.duration * design.rate))
-            groups.setdefault(key, []).append((clip.id, _trimmed(design, clip.start)))
+            if design.length:
+                by_kind.setdefault(track.kind, []).append((clip.start, clip.id, design))
     out = []
-    for members in groups.values():
-        for (ia, a), (ib, b) in combinations(members, 2):
-            if all(np.array_equal(a.terms[t], b.terms.get(t)) for t in a.terms):
-                continue
-            diff = difference(a, b, info)
+    for clips in by_kind.values():
+        clips.sort(key=lambda c: (c[0], c[1]))
+        run: list[tuple[str, str, dict[str, float]]] = []
+        for (_, ia, a), (_, ib, b) in zip(clips, clips[1:], strict=False):
+            diff = None
+            same = abs(a.length - b.length) <= 1 and set(a.terms) == set(b.terms)
+            if same and not all(np.array_equal(a.terms[t], b.terms[t]) for t in a.terms):
+                diff = difference(a, b, info)
             if diff is not None and all(diff[k] < JND[k] for k in diff):
-                clip_a = project.find_clip(ia)[1]
-                out.append(_sub_jnd(f"clips {ia} and {ib}", diff, clip_a.start, clip_a.end, a.axis))
+                run.append((ia, ib, diff))
+                continue
+            out += _step_finding(project, run)
+            run = []
+        out += _step_finding(project, run)
     return out
 
 
-def _trimmed(design: Sampled, start: float) -> Sampled:
-    """The design from a clip's start on (so clips at different places line up)."""
-    first = max(0, round((start - design.start) * design.rate))
-    terms = {k: v[first:] for k, v in design.terms.items()}
-    return Sampled(terms, design.names, design.rate, design.position(first), design.axis)
+def _step_finding(project: Project, run: list[tuple[str, str, dict[str, float]]]) -> list[Finding]:
+    """One finding for a run of sub-JND steps between consecutive clips."""
+    if not run:
+        return []
+    first, last = run[0][0], run[-1][1]
+    worst = max(run, key=lambda step: max(step[2][k] / JND[k] for k in step[2]))[2]
+    start = project.find_clip(first)[1].start
+    stop = project.find_clip(last)[1].end
+    name = f"clips {first} and {last}" if len(run) == 1 else (
+        f"{len(run) + 1} clips from {first} to {last}, each and the next,"
+    )  # fmt: skip
+    return [_sub_jnd(name, worst, start, stop, project.axis)]

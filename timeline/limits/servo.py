@@ -44,12 +44,30 @@ def smoothing(cutoff: float, rate: float) -> float:
     return 1.0 if cutoff <= 0 else 1.0 - math.exp(-2.0 * math.pi * cutoff / rate)
 
 
+def _tracking_rows(dynamics: Dynamics, period: float, e: np.ndarray):  # noqa: ANN202
+    """The tracking observer's corrected state [angle, velocity, acceleration] as rows over the
+    loop's state [theta, omega, o0, o1, o2, ...] (the same observer as the firmware's)."""
+    t = period
+    a = np.array([[1.0, t, t * t / 2.0], [0.0, 1.0, t], [0.0, 0.0, 1.0]])
+    c = np.array([1.0, 0.0, 0.0])
+    pole = math.exp(-2.0 * math.pi * dynamics.observer_bandwidth * period)
+    rows = np.array([c @ np.linalg.matrix_power(a, i) for i in (1, 2, 3)])
+    shifted = a - pole * np.eye(3)
+    gains = shifted @ shifted @ shifted @ np.linalg.solve(rows, np.array([0.0, 0.0, 1.0]))
+    observed = e[2:5]
+    predicted = a @ observed
+    miss = e[0] - predicted[0]
+    return [predicted[i] + gains[i] * miss for i in range(3)]
+
+
 def loop_matrix(
     dynamics: Dynamics, period: float, k: float = 0.0, b: float = 0.0, m: float = 0.0
 ) -> np.ndarray:
     """The free knob's closed loop over one period, state [theta, omega, meas, vel, prev_vel,
     acc, tau(n-1) ... tau(n-D)]."""
     j, bd, delay = dynamics.inertia, dynamics.damping, int(dynamics.delay)
+    if dynamics.observer_bandwidth > 0:
+        return _tracking_matrix(dynamics, period, k, b, m)
     rate = 1.0 / period
     av = smoothing(dynamics.velocity_cutoff, rate)
     aa = smoothing(dynamics.acceleration_cutoff, rate)
@@ -74,6 +92,30 @@ def loop_matrix(
     if delay:
         rows.append(tau)
         rows.extend(e[6 : 5 + delay])
+    return np.array(rows)
+
+
+def _tracking_matrix(dynamics: Dynamics, period: float, k: float, b: float, m: float) -> np.ndarray:
+    """The loop with the tracking observer: state [theta, omega, o0, o1, o2, tau delays]."""
+    j, bd, delay = dynamics.inertia, dynamics.damping, int(dynamics.delay)
+    a = np.zeros((3, 3))
+    a[0, 1], a[1, 1], a[1, 2] = 1.0, -bd / j, 1.0 / j
+    plant = expm(a * period)
+    size = 5 + delay
+    e = np.eye(size)
+    o0, o1, o2 = _tracking_rows(dynamics, period, e)
+    tau = -k * e[0] - b * o1 - m * o2
+    applied = e[4 + delay] if delay else tau
+    rows = [
+        plant[0, 0] * e[0] + plant[0, 1] * e[1] + plant[0, 2] * applied,
+        plant[1, 0] * e[0] + plant[1, 1] * e[1] + plant[1, 2] * applied,
+        o0,
+        o1,
+        o2,
+    ]
+    if delay:
+        rows.append(tau)
+        rows.extend(e[5 : 4 + delay])
     return np.array(rows)
 
 

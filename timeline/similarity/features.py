@@ -4,10 +4,11 @@
 * rhythm: the onsets of its events (drive between silences of at least touch's temporal
   resolution);
 * envelope: the drive's RMS level in dB over 20 ms frames, on the icon's own time base;
-* frequency (Hz): the energy-weighted mean of the frames' frequencies;
+* frequency (Hz): the energy-weighted mean of the frames' frequencies, or, below 50 Hz (a
+  cycle longer than a frame), the zero-crossing rate of the whole icon;
 * roughness (dB): how much the peak level jumps from one 5 ms block to the next inside events
-  (blocks of 1.5 periods for carriers below 300 Hz), which fast amplitude modulation and
-  irregular waveforms add;
+  (blocks of 1.5 periods for carriers below 300 Hz; 0 for carriers below 50 Hz, which are felt
+  as motion), which fast amplitude modulation and irregular waveforms add;
 * force: the k, b, m layers over time (time icons) or the torque, damping and mass tables over
   angle (position icons), on their own axis.
 """
@@ -20,7 +21,7 @@ import numpy as np
 
 from timeline.limits.design import Sampled
 from timeline.limits.findings import spans
-from timeline.limits.frames import frames
+from timeline.limits.frames import FRAME, crossings, frames
 from timeline.limits.thresholds import TEMPORAL_RESOLUTION
 
 SILENT = 1e-9  # of the peak drive: below this a sample is silence
@@ -80,8 +81,13 @@ def features(name: str, design: Sampled) -> Features:
     fr = frames(body, rate)
     with np.errstate(divide="ignore"):
         level = 20.0 * np.log10(np.maximum(fr.rms, 1e-15))
-    weights = fr.rms**2
+    weights = fr.rms**2 * (fr.frequency > 0)
     frequency = float(np.sum(fr.frequency * weights) / np.sum(weights)) if weights.any() else 0.0
+    where = crossings(body)  # over the whole icon: what 20 ms frames cannot see
+    spread = where[-1] - where[0] if where.size > 1 else 0.0
+    overall = (where.size - 1) * rate / (2.0 * spread) if spread > 0 else 0.0
+    if overall < 1.0 / FRAME:
+        frequency = overall
     fine = np.asarray(np.abs(body))
     # blocks of 5 ms, or 1.5 periods of a low carrier, so a smooth tone has a steady peak
     hop = max(1, round(max(0.005, 1.5 / frequency if frequency > 0 else 0.0) * rate))
@@ -92,6 +98,8 @@ def features(name: str, design: Sampled) -> Features:
     with np.errstate(divide="ignore"):
         fluct = 20.0 * np.log10(blocks[on]) if on.any() else np.zeros(1)
     roughness = float(np.std(np.diff(fluct))) if fluct.size > 1 else 0.0
+    if 0.0 < frequency < 1.0 / FRAME:
+        roughness = 0.0  # a carrier below 50 Hz is felt as motion; the envelope has its shape
     onsets = np.array([(a - first) / rate for a, _ in events])
     return Features(name, design.axis, (last + 1 - first) / rate, onsets, _resampled(level),
                     frequency, roughness, force_profiles, scales)  # fmt: skip

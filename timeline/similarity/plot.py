@@ -5,6 +5,7 @@ from __future__ import annotations
 from timeline.atomic import write_atomically
 from timeline.similarity.compare import Comparison
 from timeline.similarity.distance import ALIKE
+from timeline.similarity.labels import label_groups
 
 
 def draw_map(ax, comparison: Comparison) -> None:  # noqa: ANN001 - a matplotlib Axes
@@ -16,7 +17,7 @@ def draw_map(ax, comparison: Comparison) -> None:  # noqa: ANN001 - a matplotlib
         ax.plot(xy[[i, j], 0], xy[[i, j], 1], color="#c0392b", lw=1.5, zorder=1)
         ax.annotate(f"{d:.2f}", xy[[i, j]].mean(axis=0), color="#c0392b", fontsize=8)
     ax.scatter(xy[:, 0], xy[:, 1], s=50, color="#2c3e50", zorder=2)
-    groups = sorted(_label_groups(comparison.names, xy), key=lambda g: g[1])
+    groups = label_groups(comparison.names, xy)
     for n, (names, (x, y)) in enumerate(groups):  # neighbours in x label above, then below
         ax.annotate(" / ".join(names), (x, y), xytext=(5, 5 if n % 2 == 0 else -13),
                     textcoords="offset points", fontsize=9)  # fmt: skip
@@ -29,21 +30,6 @@ def draw_map(ax, comparison: Comparison) -> None:  # noqa: ANN001 - a matplotlib
         f"variance; red: closer than {ALIKE:g} JND",
         fontsize=9,
     )
-
-
-def _label_groups(names: list[str], xy) -> list[tuple[list[str], tuple[float, float]]]:  # noqa: ANN001
-    """Names of points that would print on top of each other, joined into one label."""
-    span = float(max(xy.max(axis=0) - xy.min(axis=0))) if len(names) else 0.0
-    near = 0.03 * span if span > 0 else 1e-9
-    groups: list[tuple[list[str], tuple[float, float]]] = []
-    for name, (x, y) in zip(names, xy, strict=True):
-        for members, (gx, gy) in groups:
-            if abs(x - gx) < near and abs(y - gy) < near:
-                members.append(name)
-                break
-        else:
-            groups.append(([name], (float(x), float(y))))
-    return groups
 
 
 def plot_map(comparison: Comparison, path: str) -> None:

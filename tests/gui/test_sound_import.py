@@ -1,0 +1,126 @@
+"""File > Import sound as haptic, and Alt-drops: the design and the sound land in one undo step."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import soundfile
+from PySide6.QtCore import QEvent, QMimeData, QPoint, QPointF, Qt, QUrl
+from PySide6.QtGui import QDragEnterEvent, QDragMoveEvent, QDropEvent
+from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QApplication, QFileDialog
+
+from tests.analysis.conftest import tone_bursts
+from timeline.analysis import AnalysisSettings
+from timeline.analysis.source import analyse_file
+from timeline.context import render_sound
+from timeline.convert import design_of_analysis
+from timeline.vibration import VibrationTile
+
+from .helpers import view_point
+
+CTRL_SHIFT = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
+ALT = Qt.KeyboardModifier.AltModifier
+PX = 200.0
+RATE = 44_100
+
+
+@pytest.fixture
+def bursts(tmp_path: Path) -> Path:
+    path = tmp_path / "bursts.wav"
+    soundfile.write(path, tone_bursts([0.1, 0.45, 0.8], 150.0, 1.2, rate=RATE), RATE, "FLOAT")
+    return path
+
+
+def drop_files(win, paths: list[Path], at: QPoint, modifiers) -> None:
+    """Files dragged from the desktop and released on the lanes with keys held."""
+    mime = QMimeData()
+    mime.setUrls([QUrl.fromLocalFile(str(p)) for p in paths])
+    vp = win.view.viewport()
+    copy, nobutton = Qt.DropAction.CopyAction, Qt.MouseButton.NoButton
+    QApplication.sendEvent(vp, QDragEnterEvent(at, copy, mime, nobutton, modifiers))
+    QApplication.sendEvent(vp, QDragMoveEvent(at, copy, mime, nobutton, modifiers))
+    drop = QDropEvent(QPointF(at), copy, mime, nobutton, modifiers, QEvent.Type.Drop)
+    QApplication.sendEvent(vp, drop)
+
+
+def test_menu_command_imports_the_design_and_the_sound(window, qtbot, monkeypatch, bursts):
+    win = window
+    monkeypatch.setattr(QFileDialog, "getOpenFileNames", lambda *a, **k: ([str(bursts)], ""))
+    tracks_before = len(win.doc.project.tracks)
+    QTest.keyClick(win, Qt.Key.Key_H, CTRL_SHIFT)
+    qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
+    project = win.doc.project
+    assert len(project.tracks) == tracks_before + 1 and project.tracks[-1].kind == "audio"
+    sound, _ = soundfile.read(bursts)
+    np.testing.assert_allclose(render_sound(project, 0.0, 1.2, RATE), sound, atol=1e-6)
+    # the design is an editable envelope tile on the first drive track, at the cursor (0 s)
+    placed = [c for c in project.tracks[0].clips if c.start == 0.0]
+    tiles = [project.tile(c.tile_id) for c in placed]
+    designs = [t.design for t in tiles if isinstance(t, VibrationTile)]
+    assert designs == [design_of_analysis(analyse_file(bursts))]
+    assert win.sound_import.dock.isVisible()
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert len(win.doc.project.tracks) == tracks_before  # one step took both away
+    assert not any(isinstance(t, VibrationTile) for t in win.doc.project.tiles.values())
+
+
+def test_panel_settings_shape_the_design(window, qtbot, bursts):
+    win = window
+    panel = win.sound_import.panel
+    win.sound_import.dock.show()
+    sensitivity = panel.fields["sensitivity"]
+    sensitivity.selectAll()
+    QTest.keyClicks(sensitivity, "100")
+    QTest.keyClick(sensitivity, Qt.Key.Key_Return)
+    assert panel.settings().sensitivity == 100.0
+    win.sound_import.convert_files([bursts], "", 0.0)
+    qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
+    assert "3 emphasis" in win.messages.text
+    panel.restore_defaults()
+    assert panel.settings() == AnalysisSettings()
+
+
+def test_clashing_settings_are_one_sentence_in_the_panel(window, bursts):
+    win = window
+    panel = win.sound_import.panel
+    panel.fields["frequency_min"].setValue(900.0)
+    panel.fields["frequency_max"].setValue(100.0)
+    before = win.doc.project
+    win.sound_import.convert_files([bursts], "", 0.0)
+    assert "frequency_min must be below frequency_max" in win.messages.text
+    assert "frequency_min" in panel.error.text() and win.doc.project is before
+
+
+def test_alt_drop_on_a_drive_lane_converts_there(window, qtbot, bursts):
+    win = window
+    lane = win.view.geometry.lane_top(1) + 30  # the second drive track
+    drop_files(win, [bursts], view_point(win, QPointF(2.0 * PX, lane)), ALT)
+    qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
+    project = win.doc.project
+    placed = project.track(win.ids["t2"]).clips[-1]
+    assert placed.start == pytest.approx(2.0, abs=1 / PX)
+    audio = project.tracks[-1]
+    assert audio.kind == "audio" and audio.clips[0].start == placed.start
+
+
+def test_plain_drop_still_imports_the_waveform(window, qtbot, bursts):
+    win = window
+    lane = win.view.geometry.lane_top(1) + 30
+    drop_files(win, [bursts], view_point(win, QPointF(2.0 * PX, lane)), Qt.KeyboardModifier(0))
+    qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
+    assert "imported bursts.wav" in win.messages.text
+    assert all(t.kind != "audio" for t in win.doc.project.tracks)
+
+
+def test_cancel_stops_the_analysis_and_changes_nothing(window, qtbot, tmp_path):
+    win = window
+    path = tmp_path / "long.wav"
+    soundfile.write(path, np.tile(tone_bursts([0.05], 200.0, 1.0, rate=8000), 120), 8000)
+    before = win.doc.project
+    win.sound_import.convert_files([path], "", 0.0)
+    QTest.mouseClick(win.messages.cancel, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
+    assert "cancelled" in win.messages.text and win.doc.project is before

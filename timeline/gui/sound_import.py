@@ -1,0 +1,240 @@
+"""File > Import sound as haptic: a sound analysed into an editable design, its settings panel.
+
+The panel (a dock beside the timeline) holds every analysis setting, starting at Meta Haptics
+Studio's defaults. Importing analyses the sound off the GUI thread; when done, the design goes
+on a drive track (the lane it was dropped on, if a drive lane) as envelope breakpoints and
+emphasis, and the sound itself on a new audio track at the same time: one undo step. Dropping
+sound files with Alt held does the same at the drop point.
+"""
+
+from __future__ import annotations
+
+from dataclasses import fields
+from pathlib import Path
+
+from PySide6.QtCore import QEvent, QObject, Qt, Signal
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QDockWidget,
+    QDoubleSpinBox,
+    QFileDialog,
+    QFormLayout,
+    QLabel,
+    QMainWindow,
+    QMenu,
+    QPushButton,
+    QScrollArea,
+    QSpinBox,
+    QVBoxLayout,
+    QWidget,
+)
+
+from timeline.analysis import DEFAULTS, AnalysisSettings, SettingsError
+from timeline.convert import ConvertedSound, analyse_sound_file, place_converted
+from timeline.errors import HapticTimelineError
+from timeline.gui.file_jobs import FileJob
+
+SOUND_EXTENSIONS = "*.wav *.flac *.ogg *.aif *.aiff *.mp3 *.opus"
+DROP_MODIFIER = Qt.KeyboardModifier.AltModifier
+# spin-box ranges and decimals for the numeric settings (unit suffix from the help text)
+RANGES = {
+    "rms_window": (0.0, 0.1, 5), "attack": (0.0, 1.0, 5), "hold": (0.0, 1.0, 4),
+    "release": (0.0, 5.0, 3), "update": (1e-4, 0.1, 4), "level_db": (-60.0, 0.0, 1),
+    "gain_db": (-60.0, 40.0, 1), "centroid_lowpass": (10.0, 20000.0, 0),
+    "frequency_min": (0.0, 20000.0, 0), "frequency_max": (1.0, 20000.0, 0),
+    "output_min": (0.0, 1.0, 2), "output_max": (0.0, 1.0, 2), "minimum_score": (0.0, 1.0, 9),
+    "tolerance": (0.0, 1.0, 3), "sensitivity": (0.0, 100.0, 0), "peak_window": (0.0, 2.0, 3),
+    "minimum_rise": (0.0, 1.0, 2), "plateau": (0.0, 100.0, 0), "sharpness_min": (0.0, 1.0, 2),
+    "sharpness_max": (0.0, 1.0, 2), "ducking": (0.0, 100.0, 0),
+}  # fmt: skip
+INT_RANGES = {
+    "fft_size": (16, 65536),
+    "overlap": (1, 64),
+    "amplitude_points_per_second": (2, 1000),
+    "frequency_points_per_second": (2, 1000),
+}
+
+
+LABELS = {
+    "rms_window": "RMS window (s)", "attack": "Attack (s)", "hold": "Hold (s)",
+    "release": "Release (s)", "update": "Update every (s)", "normalize": "Normalise",
+    "level_db": "Level (dBFS)", "gain_db": "Gain (dB)", "fft_size": "FFT size",
+    "overlap": "Overlap", "centroid_lowpass": "Centroid below (Hz)",
+    "frequency_min": "Frequency 0 at (Hz)", "frequency_max": "Frequency 1 at (Hz)",
+    "output_min": "Lowest frequency", "output_max": "Highest frequency",
+    "amplitude_points_per_second": "Amplitude points / s",
+    "frequency_points_per_second": "Frequency points / s", "minimum_score": "Minimum score",
+    "tolerance": "Error bound", "emphasis": "Emphasis", "sensitivity": "Sensitivity (%)",
+    "peak_window": "Peak window (s)", "minimum_rise": "Minimum rise", "plateau": "Plateau (%)",
+    "sharpness_min": "Softest hit frequency", "sharpness_max": "Sharpest hit frequency",
+    "ducking": "Ducking (%)",
+}  # fmt: skip
+
+
+def _label(name: str) -> str:
+    return LABELS.get(name, name.replace("_", " ").capitalize())
+
+
+class AnalysisPanel(QWidget):
+    """Every analysis setting as a field; `settings()` reads them (or raises SettingsError)."""
+
+    changed = Signal()
+
+    def __init__(self) -> None:
+        super().__init__()
+        form = QFormLayout()
+        self.fields: dict[str, QWidget] = {}
+        for f in fields(AnalysisSettings):
+            widget = self._field(f.name, getattr(DEFAULTS, f.name))
+            widget.setToolTip(AnalysisSettings.help(f.name))
+            widget.setMaximumWidth(150)
+            form.addRow(_label(f.name), widget)
+            self.fields[f.name] = widget
+        self.error = QLabel("")
+        self.error.setStyleSheet("color: #b00020;")
+        self.error.setWordWrap(True)
+        defaults = QPushButton("Studio defaults")
+        defaults.setToolTip("Put every setting back to Meta Haptics Studio's default")
+        defaults.clicked.connect(self.restore_defaults)
+        inner = QWidget()
+        inner.setLayout(form)
+        scroll = QScrollArea()
+        scroll.setWidget(inner)
+        scroll.setWidgetResizable(True)
+        layout = QVBoxLayout(self)
+        layout.addWidget(scroll, 1)
+        layout.addWidget(self.error)
+        layout.addWidget(defaults)
+
+    def _field(self, name: str, value: object) -> QWidget:
+        if isinstance(value, bool):
+            box = QCheckBox()
+            box.toggled.connect(self.changed)
+            return box
+        if name in INT_RANGES:
+            spin = QSpinBox()
+            spin.setRange(*INT_RANGES[name])
+            spin.valueChanged.connect(self.changed)
+            return spin
+        lo, hi, decimals = RANGES[name]
+        number = QDoubleSpinBox()
+        number.setRange(lo, hi)
+        number.setDecimals(decimals)
+        number.setSingleStep(10.0 ** -min(decimals, 3) if hi > 1 else 0.01)
+        if name == "tolerance":
+            number.setSpecialValueText("off")
+        number.valueChanged.connect(self.changed)
+        return number
+
+    def restore_defaults(self) -> None:
+        """Meta Haptics Studio's settings in every field."""
+        self.show_settings(DEFAULTS)
+
+    def show_settings(self, settings: AnalysisSettings) -> None:
+        for name, widget in self.fields.items():
+            value = getattr(settings, name)
+            if isinstance(widget, QCheckBox):
+                widget.setChecked(bool(value))
+            else:
+                widget.setValue(0 if value is None else value)  # type: ignore[attr-defined]
+        self.error.setText("")
+
+    def settings(self) -> AnalysisSettings:
+        """The settings in the fields; a SettingsError (also shown in the panel) if they clash."""
+        values = {}
+        for name, widget in self.fields.items():
+            if isinstance(widget, QCheckBox):
+                values[name] = widget.isChecked()
+            else:
+                values[name] = widget.value()  # type: ignore[attr-defined]
+        values["tolerance"] = values["tolerance"] or None
+        try:
+            found = AnalysisSettings(**values)
+        except SettingsError as exc:
+            self.error.setText(str(exc))
+            raise
+        self.error.setText("")
+        return found
+
+
+class SoundImport(QObject):
+    """The editor's sound-to-haptic command: menu actions, the settings dock and the jobs."""
+
+    def __init__(self, window: QMainWindow) -> None:
+        super().__init__(window)
+        self.window = window
+        self.panel = AnalysisPanel()
+        self.panel.restore_defaults()
+        self.dock = QDockWidget("Sound analysis", window)
+        self.dock.setObjectName("soundAnalysisDock")
+        self.dock.setWidget(self.panel)
+        self.dock.setMinimumWidth(360)
+        window.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, self.dock)
+        self.dock.hide()
+        self._drop_modifiers = Qt.KeyboardModifier.NoModifier
+        window.view.viewport().installEventFilter(self)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
+        """Note the keys held when files are dropped on the lanes (the view handles the drop)."""
+        if event.type() == QEvent.Type.Drop:
+            self._drop_modifiers = event.modifiers()  # type: ignore[attr-defined]
+        return False
+
+    def add_actions(self, menu: QMenu) -> None:
+        """File menu entries: import a sound as a haptic design, show the settings panel."""
+        act = self.window._action(menu, "Import sound as &haptic…", self.import_dialog,
+                                  "Ctrl+Shift+H",
+                                  "Analyse a sound into an editable haptic design")  # fmt: skip
+        self.import_action = act
+        toggle = self.dock.toggleViewAction()
+        toggle.setText("Sound &analysis settings")
+        menu.addAction(toggle)
+
+    def wants_drop(self) -> bool:
+        """Whether the files being dropped should be imported as haptics (Alt held)."""
+        held, self._drop_modifiers = self._drop_modifiers, Qt.KeyboardModifier.NoModifier
+        return bool(held & DROP_MODIFIER)
+
+    def import_dialog(self) -> None:
+        self.dock.show()
+        paths, _ = QFileDialog.getOpenFileNames(
+            self.window, "Import sound as haptic", "", f"Sounds ({SOUND_EXTENSIONS})"
+        )
+        if paths:
+            at = self.window.view.scene().cursor_u
+            self.convert_files([Path(p) for p in paths], "", at)
+
+    def convert_files(self, paths: list[Path], track_id: str, at: float) -> None:
+        """Analyse sounds in the background; each lands at `at` on the drive track chosen."""
+        try:
+            settings = self.panel.settings()
+        except SettingsError as exc:
+            self.dock.show()
+            self.window.messages.show_message(str(exc), "error")
+            return
+        for path in paths:
+            job = FileJob(
+                lambda progress, p=path: analyse_sound_file(p, settings, progress=progress)
+            )
+            job.done.connect(lambda found, j=job: self._analysed(j, found, track_id, at))
+            self.window._start(job, f"analysing {path.name}…")
+
+    def _analysed(self, job: FileJob, found: ConvertedSound, track_id: str, at: float) -> None:
+        self.window._finish(job)
+        if job.cancelled:
+            self.window.messages.show_message("import cancelled; nothing was changed")
+            return
+        doc = self.window.doc
+        drive = next((t.id for t in doc.project.tracks if t.id == track_id and t.kind == "drive"),
+                     None)  # fmt: skip
+        try:
+            project = place_converted(doc.project, found, at=at, drive_track=drive)
+        except HapticTimelineError as exc:
+            self.window.messages.show_message(str(exc), "error")
+            return
+        doc.replace(f"import {found.path.name} as haptic", project)
+        a = found.analysis
+        self.window.messages.show_message(
+            f"{found.path.name} as haptic: {len(a.amplitude)} amplitude and {len(a.frequency)} "
+            f"frequency points, {len(a.emphasis)} emphasis; the sound is on an audio track"
+        )
