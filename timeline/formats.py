@@ -125,7 +125,7 @@ def readers_for(path: str | os.PathLike) -> list[Format]:
 def writer_for(path: str | os.PathLike) -> Format:
     """The format that writes files with this path's extension (FormatError if none)."""
     ext = extension(path)
-    for f in all_formats().values():
+    for _, f in plugins.iter_group(plugins.IMPORTERS):  # stops loading at the first that fits
         if f.writes and ext in f.extensions:
             return f
     known = sorted({e for f in all_formats().values() if f.writes for e in f.extensions})

@@ -370,7 +370,8 @@ class Mixer:
         start, rate, n = grid.start, grid.rate, grid.n
         placed = []
         used = {}
-        for clip in track.clips:
+        # clips wholly outside the window are never placed: visit only those that may touch it
+        for clip in track.clips_between(start, start + n / rate, 2.0 / rate):
             tile = project.tile(clip.tile_id)
             old = before.get(id(clip))
             if old and old.clip is clip and old.tile is tile and old.weight == scale * clip.gain:

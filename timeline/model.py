@@ -7,6 +7,7 @@ and A/B variants are cheap snapshots of the same states.
 from __future__ import annotations
 
 import math
+from bisect import bisect_left
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from types import MappingProxyType
@@ -40,6 +41,8 @@ class Fade:
     shape: str = "linear"
 
     def __post_init__(self) -> None:
+        if self.length == 0.0 and type(self.length) is float and self.shape == "linear":
+            return  # no fade: the common case, nothing to check
         length = _finite("a fade's length", self.length)
         if length < 0:
             raise EditError(f"a fade's length cannot be negative ({length})")
@@ -139,6 +142,27 @@ class Track:
     def clips_by_id(self) -> dict[str, Clip]:
         """Clip id -> clip, built once per track state (edits share unchanged tracks)."""
         return {c.id: c for c in self.clips}
+
+    @cached_property
+    def _starts(self) -> tuple[list[float], float] | None:
+        """Clip starts and the longest clip, if the clips are in start order (else None)."""
+        starts = [c.start for c in self.clips]
+        if any(b < a for a, b in zip(starts, starts[1:], strict=False)):
+            return None
+        return starts, max((c.duration for c in self.clips), default=0.0)
+
+    def clips_between(self, t0: float, t1: float, margin: float) -> tuple[Clip, ...]:
+        """The clips that may overlap [t0 - margin, t1 + margin), in track order (a superset).
+
+        Found by bisection when the clips are in start order (edits keep them so), so a render of
+        a short window does not visit every clip of a long track.
+        """
+        found = self._starts
+        if found is None:
+            return self.clips
+        starts, longest = found
+        first = bisect_left(starts, t0 - longest - margin)
+        return self.clips[first : bisect_left(starts, t1 + margin)]
 
     @cached_property
     def end(self) -> float:

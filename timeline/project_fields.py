@@ -12,6 +12,7 @@ import math
 from typing import Any
 
 MAX_ID = 2**62  # the project's id counter; anything larger was not written by an editor
+_MISSING = object()
 
 
 class FieldError(Exception):
@@ -32,6 +33,10 @@ def obj(value: Any, where: str) -> dict:
 
 def get(value: Any, key: str, kind: type, where: str) -> Any:
     """value[key], which must be of `kind` (str, list, dict or bool; never a bool for others)."""
+    if type(value) is dict:  # the common case first: a value of exactly the wanted type
+        item = value.get(key, _MISSING)
+        if type(item) is kind:
+            return item
     value = obj(value, where)
     if key not in value:
         raise FieldError(f"{where} has no {key!r}")
@@ -63,6 +68,10 @@ def number(
     positive: bool = False,
 ) -> float:
     """value[key] as a finite float (default if absent and a default is given)."""
+    if type(value) is dict:  # the common case first: a finite float within range
+        item = value.get(key, _MISSING)
+        if type(item) is float and math.isfinite(item) and (item > 0 or not positive):
+            return item
     value = obj(value, where)
     if key not in value and default is not None:
         return default

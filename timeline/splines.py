@@ -61,7 +61,7 @@ def pchip(x: np.ndarray, y: np.ndarray) -> PiecewiseCubic:
     w1 = 2.0 * h[1:] + h[:-1]
     w2 = h[1:] + 2.0 * h[:-1]
     same_sign = np.sign(slope[1:]) * np.sign(slope[:-1]) > 0
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # 1/inf is a 0 slope
         mean = (w1 / slope[:-1] + w2 / slope[1:]) / (w1 + w2)
         d[1:-1] = np.where(same_sign, 1.0 / mean, 0.0)
     d[0] = _pchip_end(h[0], h[1], slope[0], slope[1])

@@ -33,7 +33,14 @@ class SimKnob(Device):
     def info(self) -> DeviceInfo:
         p = self.params
         return DeviceInfo(
-            "sim", "kinesthetic", p.rate, p.max_torque, p.quantum, p.firmware, p.dynamics
+            "sim",
+            "kinesthetic",
+            p.rate,
+            p.max_torque,
+            p.quantum,
+            p.firmware,
+            p.dynamics,
+            p.slew or None,
         )
 
     @classmethod

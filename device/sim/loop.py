@@ -20,8 +20,8 @@ Each period: read the quantised encoder, update the estimators, compute tau = d 
 b*theta_dot - m*theta_ddot (coefficients per period, or T, B, M looked up linearly at the angle
 with k = 0), scale it by the watchdog's gain, clamp it (NaN becomes 0); with a computation
 delay apply the torque computed one period earlier instead (it arrives a period late, as on
-firmware that computes during a period and writes the amplifier at the next tick); add the
-hand's push,
+firmware that computes during a period and writes the amplifier at the next tick); limit its
+change per period to the slew limit if there is one; add the hand's push,
 add Coulomb friction as the torque (within its level) that would stop the rotor in the period,
 and advance the mechanics by the plant's linear map (plant.py, its theta and omega rows).
 """
@@ -44,7 +44,7 @@ def servo_loop(
     gain: np.ndarray,
     use_mass: bool,
     lookup: tuple[float, float, float],
-    firmware: tuple[float, float, float, float, float, float, float, float],
+    firmware: tuple[float, float, float, float, float, float, float, float, float],
     plant: tuple[float, float, float, float, float, float, float, float, float, float],
     hand: tuple[float, float, float, float],
     state: State,
@@ -57,13 +57,13 @@ def servo_loop(
     tables: rows T, B, M over angle (position projects; no columns in time projects), looked up
     at origin + angle, sample j at table angle start + j/rate, `lookup` = (origin, start, rate);
     firmware: rate, period, quantum, max torque, Coulomb level, velocity and acceleration filter
-    gains, computation delay (0 or 1 period); plant: the theta row then the omega row of the map
-    over z = [theta, omega, u, r, v];
+    gains, computation delay (0 or 1 period), slew limit (N*m/s, 0 = none); plant: the theta
+    row then the omega row of the map over z = [theta, omega, u, r, v];
     hand: push torque, push ramp, turning speed, seconds since the play started; observer: on
     (1.0) or off (0.0), then the tracking model's 3x3 matrix A by rows and the gains L
     (observer.py).
     """
-    rate, period, quantum, tmax, coulomb, av, aa, delay = firmware
+    rate, period, quantum, tmax, coulomb, av, aa, delay, slew = firmware
     t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = plant
     push, push_ramp, speed, elapsed = hand
     (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending,
@@ -120,6 +120,12 @@ def servo_loop(
             nonfinite += 1
         if delay:
             tau, pending = pending, tau
+        if slew:  # the amplifier follows at most slew N*m/s
+            step = slew * period
+            if tau > applied + step:
+                tau = applied + step
+            elif tau < applied - step:
+                tau = applied - step
         applied = tau
         u = tau
         if push:

@@ -28,6 +28,7 @@ class KnobParams:
     acceleration_cutoff: float = 200.0  # Hz low-pass on the acceleration estimate; 0 = none
     estimator: str = "filter"  # "filter" (differences, low-passed) or "tracking" (observer.py)
     observer_bandwidth: float = 1000.0  # Hz: where an observer's three poles sit (observer.py)
+    slew: float = 0.0  # N*m/s the amplifier's output may change by at most; 0 = no limit
     delay: int = 0  # servo periods between reading the encoder and applying its torque (0 or 1)
     watchdog_timeout: float = 0.005  # s without a block before the torque starts ramping down
     watchdog_ramp: float = 0.010  # s from the last torque to zero

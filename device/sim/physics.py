@@ -200,7 +200,9 @@ class KnobPhysics:
             coeffs, tables, use_mass = NO_COEFFS, self._table_rows(tab), tab.mass is not None
             lookup = _floats(origin, tab.start, tab.rate)
         filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
-        firmware = _floats(p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay)
+        firmware = _floats(
+            p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay, p.slew
+        )
         motion = _floats(hand.push_torque, hand.push_ramp, hand.turn_speed, self.samples * p.period)
         state = _floats(self.theta, self.omega, self.grip_target, self.anchor, self.prev_meas,
                         self.vel, self.prev_vel, self.acc, self.pending,

@@ -48,7 +48,8 @@ def _crossing_everything():
 def test_check_json_names_every_kind_of_finding(tmp_path: Path, capsys) -> None:
     path = tmp_path / "everything.htl"
     save(_crossing_everything(), path)
-    assert cli.main(["check", str(path), "--json", "--actuator", "lra-175"]) == 3
+    args = ["check", str(path), "--json", "--actuator", "lra-175", "--device-option", "slew=100"]
+    assert cli.main(args) == 3
     report = json.loads(capsys.readouterr().out)
     kinds = {f["kind"] for f in report["findings"]}
     assert kinds == {
@@ -62,7 +63,8 @@ def test_check_json_names_every_kind_of_finding(tmp_path: Path, capsys) -> None:
         "negative-damping",
         "mass-limit",
         "mass-cancels-inertia",
-    }  # fmt: skip  (slew: tests/limits, the sim declares no slew limit)
+        "slew-limit",
+    }
     for f in report["findings"]:
         assert f["what"] and f["advice"] and f["unit"]
         assert f["start"] < f["stop"]

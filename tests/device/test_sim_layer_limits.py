@@ -144,3 +144,24 @@ def test_with_the_tracking_observer_the_limits_follow_it(layer: str, fraction: f
         assert late < 0.5 * early
     else:
         assert late > 1.2 * early or late > 0.9 * p.max_torque
+
+
+def test_a_declared_slew_limit_is_obeyed_and_checked() -> None:
+    from timeline import edits, generator
+    from timeline.devices import open_device
+    from timeline.limits.check import check
+
+    p = KnobParams(**LINEAR, slew=100.0)  # N*m/s: 10 mNm per period at 10 kHz
+    knob = KnobPhysics(p)
+    d = np.array([0.0, 0.05, 0.05, 0.05, 0.05, 0.0])
+    zero = np.zeros(6)
+    torque = knob.run_block(CoefficientBlock(d, zero, zero)).torque
+    np.testing.assert_allclose(torque, [0.0, 0.01, 0.02, 0.03, 0.04, 0.03], atol=1e-15)
+    project = edits.new_project("time")
+    project, track = edits.add_track(project, "drive", "drive")
+    project, tile = edits.add_tile(project, generator("constant", 0.01, "step", value=1.0))
+    project, _ = edits.add_clip(project, track, tile, 0.0, gain=0.5)  # 90 mNm in one period
+    with open_device("sim", slew=100.0) as sim:
+        assert sim.info.slew == 100.0
+        (found,) = [f for f in check(project, sim.info).findings if f.kind == "slew-limit"]
+    assert found.value == pytest.approx(900.0) and found.limit == 100.0

@@ -124,3 +124,17 @@ def test_cancel_stops_the_analysis_and_changes_nothing(window, qtbot, tmp_path):
     QTest.mouseClick(win.messages.cancel, Qt.MouseButton.LeftButton)
     qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
     assert "cancelled" in win.messages.text and win.doc.project is before
+
+
+def test_playing_with_a_sound_says_when_no_card_can_play_it(window, qtbot, bursts):
+    win = window
+    win.sound_import.convert_files([bursts], "", 0.0)
+    qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
+    QTest.keyClick(win.view, Qt.Key.Key_Space)
+    qtbot.waitUntil(lambda: win.player.playing, timeout=5_000)
+    if win.player.sound.playing:  # a machine with a sound card hears it
+        assert win.player.sound.project is win.doc.project
+    else:
+        assert win.messages.text.startswith("the source sound is not played: ")
+    QTest.keyClick(win.view, Qt.Key.Key_Space)
+    assert not win.player.playing and not win.player.sound.playing

@@ -120,3 +120,15 @@ def test_a_wideband_voice_coil_renders_what_an_lra_cannot() -> None:
     design = tone(90.0, 0.1, seconds=0.5)
     assert "outside-actuator-band" in kinds(design, chosen=actuator("lra-175"))
     assert "outside-actuator-band" not in kinds(design, chosen=actuator("voice-coil"))
+
+
+def test_an_oscillating_layer_is_one_finding_per_stretch_not_per_half_cycle() -> None:
+    p = edits.new_project("time")
+    p, track = edits.add_track(p, "damping", "damping")
+    p, tile = edits.add_tile(p, generator("sine", 0.15, "wobble", frequency=40.0))
+    p, _ = edits.add_clip(p, track, tile, 0.0)
+    p, _ = edits.add_clip(p, track, tile, 0.5)  # 0.35 s later: its own finding
+    found = [f for f in check(p, KNOB).findings if f.kind == "negative-damping"]
+    assert len(found) == 2  # 6 negative half cycles each
+    assert found[0].start == pytest.approx(0.0125, abs=2e-4)
+    assert found[0].stop == pytest.approx(0.15, abs=2e-4)

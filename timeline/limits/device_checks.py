@@ -14,6 +14,8 @@ from timeline.limits.findings import Finding, spans
 from timeline.limits.frames import frames
 from timeline.limits.thresholds import AMPLITUDE_JND_DB
 
+JOIN = 0.05  # s (rad on a position axis): crossings closer than this are one finding
+
 
 def _over(
     design: Sampled,
@@ -26,9 +28,10 @@ def _over(
     what: str,
     advice: Callable[[float, float], str],
 ) -> list[Finding]:
-    """One finding per run of samples with excess > 0; value/limit at the run's worst sample."""
+    """One finding per run of samples with excess > 0 (runs closer than JOIN count as one);
+    value/limit at the run's worst sample."""
     out = []
-    for a, b in spans(excess > 0):
+    for a, b in spans(excess > 0, join=round(JOIN * design.rate)):
         worst = a + int(np.argmax(excess[a : b + 1]))
         value, limit = float(values[worst]), float(limits[worst])
         out.append(
@@ -125,7 +128,7 @@ def slew(design: Sampled, info: DeviceInfo) -> list[Finding]:
     d = design.terms.get("d")
     if info.slew is None or d is None or design.axis != "time" or d.size < 2:
         return []
-    rate = np.abs(np.diff(d, prepend=d[0])) * design.rate
+    rate = np.abs(np.diff(d, prepend=0.0)) * design.rate  # the device starts from rest
     limit = np.full(d.size, info.slew)
     return _over(
         design, "slew-limit", "d", rate - limit, rate, limit, "per s",

@@ -54,13 +54,16 @@ class Finding:
         return out
 
 
-def spans(mask: np.ndarray) -> list[tuple[int, int]]:
-    """Index ranges [first, last] of the runs of True in a boolean array."""
+def spans(mask: np.ndarray, join: int = 0) -> list[tuple[int, int]]:
+    """Index ranges [first, last] of the runs of True in a boolean array.
+
+    Runs separated by fewer than `join` False samples count as one (an oscillating layer that
+    crosses a limit every half cycle is one finding, not one per half cycle).
+    """
     edges = np.diff(np.concatenate([[0], np.asarray(mask, dtype=np.int8), [0]]))
-    return list(
-        zip(
-            np.flatnonzero(edges == 1).tolist(),
-            (np.flatnonzero(edges == -1) - 1).tolist(),
-            strict=True,
-        )
-    )
+    firsts = np.flatnonzero(edges == 1)
+    lasts = np.flatnonzero(edges == -1) - 1
+    if join > 0 and firsts.size > 1:
+        keep = np.concatenate([[True], firsts[1:] - lasts[:-1] - 1 >= join])
+        firsts, lasts = firsts[keep], np.append(lasts[np.flatnonzero(keep)[1:] - 1], lasts[-1])
+    return list(zip(firsts.tolist(), lasts.tolist(), strict=True))
