@@ -1,4 +1,4 @@
-"""Generators above the output's Nyquist frequency: removed where the shape allows, named where not.
+"""Generators above the output's Nyquist frequency: removed or band-limited, never aliased.
 
 A closed-form shape sampled at a rate below twice its frequency aliases: a 7 kHz sine rendered
 at 10 kHz comes out as a 3 kHz tone at full level. Shapes whose spectrum is known exactly
@@ -6,7 +6,10 @@ at 10 kHz comes out as a 3 kHz tone at full level. Shapes whose spectrum is know
 highest frequency reaches the Nyquist frequency of the grid they are sampled on, the samples are
 zero (removed, as an ideal low-pass filter would). Square, saw and triangle waves have
 harmonics at every multiple of their frequency: above Nyquist their fundamental is removed the
-same way; below it their upper harmonics still alias, and `aliasing_notes` names those clips.
+same way; below it, when the harmonics at or above Nyquist carry more than ALIAS_LIMIT of the
+wave's power, the wave is synthesised from its harmonics below Nyquist
+(timeline.harmonic_waves), and otherwise sampled as the ideal wave (its alias is under the
+limit). `aliasing_notes` names the clips whose rendering departs audibly from their design.
 """
 
 from __future__ import annotations
@@ -15,7 +18,11 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
-_HARMONIC = ("square", "saw", "triangle")
+from timeline.harmonic_waves import HARMONIC, aliased_fraction, synthesise
+
+# Square/saw/triangle waves are synthesised band-limited when a naive sampling would fold back
+# more than this share of their power (-30 dB); below it they are sampled as the ideal wave.
+ALIAS_LIMIT = 1e-3
 
 
 def _chirp_frequency(u: np.ndarray, duration: float, p: Mapping[str, float]) -> np.ndarray:
@@ -35,18 +42,27 @@ _HIGHEST: dict[str, Callable[[np.ndarray, float, Mapping[str, float]], np.ndarra
 
 
 def band_limited(
-    generator: str, values: np.ndarray, u0: float, du: float, duration: float, params: Mapping
+    generator: str,
+    u: np.ndarray,
+    nyquist: float,
+    duration: float,
+    params: Mapping[str, float],
+    evaluate: Callable[[np.ndarray], np.ndarray],
 ) -> np.ndarray:
-    """values (the shape on the grid u0 + k*du) with content at or above Nyquist removed."""
-    if du == 0:
-        return values
-    nyquist = 0.5 / abs(du)
-    if generator in _HARMONIC:
-        return values if abs(params["frequency"]) < nyquist else np.zeros_like(values)
+    """The shape at positions u (sampled at a spacing with this Nyquist frequency) with content
+    at or above Nyquist removed; `evaluate` gives the ideal shape, zero outside its span."""
+    if generator in HARMONIC:
+        if abs(params["frequency"]) >= nyquist:
+            return np.zeros(np.shape(u))
+        if aliased_fraction(generator, params, nyquist) <= ALIAS_LIMIT:
+            return evaluate(u)
+        with np.errstate(all="ignore"):
+            values = synthesise(generator, u, params, nyquist)
+        return np.where((u < 0) | (u > duration), 0.0, values)
+    values = evaluate(u)
     highest = _HIGHEST.get(generator)
     if highest is None:
         return values
-    u = u0 + du * np.arange(values.size)
     top = np.broadcast_to(highest(u, duration, params), values.shape)
     return np.where(top < nyquist, values, 0.0)
 
@@ -55,7 +71,7 @@ def aliasing_notes(project, rate: float | None = None) -> list[str]:
     """One sentence per generator clip that renders differently from its design at `rate`.
 
     Names clips whose content is removed above Nyquist, and square/saw/triangle clips whose
-    harmonics alias (the third harmonic, at 1/3 or 1/9 of the level, is above Nyquist).
+    third harmonic (at 1/3 or 1/9 of the level) is removed by band-limiting.
     """
     from timeline.tiles import GeneratorTile
 
@@ -71,7 +87,7 @@ def aliasing_notes(project, rate: float | None = None) -> list[str]:
             params = dict(tile.params)
             speed = clip.stretch if clip.stretch_mode == "squeeze" else 1.0
             where = f"clip {clip.id} ({tile.name}) on track {track.name!r}"
-            if tile.generator in _HARMONIC:
+            if tile.generator in HARMONIC:
                 f = abs(params["frequency"]) / speed
                 if f >= nyquist:
                     notes.append(
@@ -80,9 +96,9 @@ def aliasing_notes(project, rate: float | None = None) -> list[str]:
                     )
                 elif 3 * f >= nyquist:
                     notes.append(
-                        f"{where}: the harmonics of its {f:g} {unit} {tile.generator} wave above "
-                        f"{nyquist:g} {unit} alias at this rate; render at a higher rate or use "
-                        "a sine"
+                        f"{where}: the harmonics of its {f:g} {unit} {tile.generator} wave at or "
+                        f"above {nyquist:g} {unit} were removed, so it renders close to a sine; "
+                        "render at a higher rate to keep its shape"
                     )
                 continue
             highest = _HIGHEST.get(tile.generator)

@@ -232,9 +232,17 @@ class GeneratorTile:
         return _zero_outside(u, values, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
-        """Samples on the grid u0 + k*du, with content at or above its Nyquist removed."""
-        values = _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
-        return band_limited(self.generator, values, u0, du, self.duration, dict(self.params))
+        """Samples on the grid u0 + k*du, with content at or above its Nyquist removed (the
+        Nyquist of the grid actually evaluated, when the preset decimates)."""
+        decimation = quality.control_decimation if n > 2 * quality.control_decimation else 1
+        spacing = abs(du) * max(1, decimation)
+        nyquist = 0.5 / spacing if spacing > 0 else math.inf
+        params = dict(self.params)
+
+        def shape(u: np.ndarray) -> np.ndarray:
+            return band_limited(self.generator, u, nyquist, self.duration, params, self.evaluate)
+
+        return _evaluate_decimated(shape, u0, du, n, quality.control_decimation)
 
     def with_name(self, name: str) -> GeneratorTile:
         return GeneratorTile(self.generator, self.duration, self.params, name)

@@ -38,9 +38,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.exporting import export_project_file
+    from timeline.band_limit import aliasing_notes
+    from timeline.exporting import export_project
+    from timeline.projectfile import load
 
+    project = load(args.project)
     options = {"fixed_point": True} if args.fixed_point else {}
-    export_project_file(args.project, args.output, rate=args.rate, **options)
+    export_project(project, args.output, rate=args.rate, **options)
+    for note in aliasing_notes(project, args.rate):
+        print(f"haptic-timeline: warning: {note}", file=sys.stderr)
     print(f"exported {args.project} -> {args.output}", file=sys.stderr)
     return 0

@@ -1,0 +1,94 @@
+"""Square, saw and triangle waves as Fourier series: exact band-limited synthesis at any rate.
+
+With x the position within the cycle (frequency*u + phase/2pi) and K harmonics kept:
+
+    square (duty d) = (2d - 1) + sum_k 2/(pi k) [sin(2 pi k x) - sin(2 pi k (x - d))]
+    saw             = -sum_k 2/(pi k) sin(2 pi k x)
+    triangle        = -sum_(k odd) 8/(pi^2 k^2) cos(2 pi k x)
+
+Each converges to the ideal wave of timeline.generators; with every harmonic below Nyquist kept
+and none above it, sampling adds no alias. `aliased_fraction` is the share of a wave's power
+that its harmonics at or above Nyquist carry: what a naively sampled wave folds back.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+
+HARMONIC = ("square", "saw", "triangle")
+_BLOCK = 8192  # samples summed at a time, so the running sums stay in cache
+# Harmonics counted at most: beyond 100,000 below Nyquist the power left above is under 1e-5
+# of any of these waves (at most 8/(pi^2 K) of it), so it is counted as zero.
+MAX_COUNTED = 100_000
+
+
+def harmonics_below(frequency: float, nyquist: float) -> int:
+    """How many harmonics of `frequency` lie strictly below `nyquist` (K)."""
+    f = abs(frequency)
+    if f == 0 or nyquist / f > MAX_COUNTED:
+        return MAX_COUNTED
+    return max(0, math.ceil(nyquist / f) - 1)
+
+
+def _duty(params: Mapping[str, float]) -> float:
+    return min(1.0, max(0.0, params["duty"]))
+
+
+def _harmonic_power(generator: str, params: Mapping[str, float], k: np.ndarray) -> np.ndarray:
+    """Mean power of harmonic k of a unit-amplitude wave."""
+    if generator == "square":
+        return 8.0 * np.sin(np.pi * k * _duty(params)) ** 2 / (np.pi * k) ** 2
+    if generator == "saw":
+        return 2.0 / (np.pi * k) ** 2
+    return np.where(k % 2 == 1, 32.0 / (np.pi**4 * k**4), 0.0)
+
+
+def _mean_and_power(generator: str, params: Mapping[str, float]) -> tuple[float, float]:
+    """The unit-amplitude wave's mean and its total mean power."""
+    if generator == "square":
+        return 2.0 * _duty(params) - 1.0, 1.0
+    return 0.0, 1.0 / 3.0
+
+
+def aliased_fraction(generator: str, params: Mapping[str, float], nyquist: float) -> float:
+    """The share of the wave's power in harmonics at or above `nyquist` (0..1)."""
+    keep = harmonics_below(params["frequency"], nyquist)
+    mean, total = _mean_and_power(generator, params)
+    k = np.arange(1, keep + 1, dtype=np.float64)
+    kept = mean * mean + float(np.sum(_harmonic_power(generator, params, k)))
+    return min(1.0, max(0.0, (total - kept) / total))
+
+
+def _coefficients(generator: str, params: Mapping[str, float], keep: int) -> np.ndarray:
+    """Complex b_k (k = 1..keep) with the unit wave = mean + Re(sum_k b_k exp(2 pi i k x))."""
+    k = np.arange(1, keep + 1, dtype=np.float64)
+    if generator == "square":
+        shift = np.exp(-2j * np.pi * k * _duty(params))
+        return -1j * (2.0 / (np.pi * k)) * (1.0 - shift)
+    if generator == "saw":
+        return 1j * (2.0 / (np.pi * k))
+    return np.where(k % 2 == 1, -8.0 / (np.pi**2 * k**2), 0.0).astype(np.complex128)
+
+
+def synthesise(
+    generator: str, u: np.ndarray, params: Mapping[str, float], nyquist: float
+) -> np.ndarray:
+    """The wave at positions u with every harmonic below `nyquist` and none at or above it."""
+    keep = harmonics_below(params["frequency"], nyquist)
+    mean, _ = _mean_and_power(generator, params)
+    b = _coefficients(generator, params, keep)[::-1]
+    x = params["frequency"] * np.asarray(u, dtype=np.float64) + params["phase"] / (2.0 * np.pi)
+    out = np.empty(x.shape)
+    flat_x, flat_out = x.reshape(-1), out.reshape(-1)
+    for start in range(0, flat_x.size, _BLOCK):
+        part = flat_x[start : start + _BLOCK]
+        z = np.exp(2j * np.pi * (part - np.floor(part)))
+        total = np.zeros(z.shape, dtype=np.complex128)
+        for coefficient in b:  # Horner's rule: stable for |z| = 1
+            total += coefficient
+            total *= z
+        flat_out[start : start + _BLOCK] = total.real
+    return params["amplitude"] * (mean + out)
