@@ -13,7 +13,8 @@ PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_s
 TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
           "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency",
           "Scale: full render", "Scale: building through edits", "Scale: project save",
-          "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:")  # fmt: skip
+          "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:",
+          "Square, saw and triangle waves")  # fmt: skip
 
 
 def test_quick_bench_prints_tables_and_writes_plots(tmp_path: Path) -> None:

@@ -23,6 +23,7 @@ MODULES = (
     "timeline.bench.scale",
     "timeline.bench.convert",
     "timeline.bench.formats",
+    "timeline.bench.waves",
 )
 
 
