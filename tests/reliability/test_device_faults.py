@@ -17,7 +17,7 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from device.sim import KnobPhysics, SimKnob
+from device.sim import KnobParams, KnobPhysics, SimKnob
 from device.usb import UsbKnob
 from device.usb import protocol as p
 from device.usb.emulated import EmulatedBackend, EmulatedDevice, FaultPlan
@@ -90,3 +90,24 @@ def test_the_motor_never_sees_nan_or_more_than_its_maximum(rows, hand) -> None:
     params = physics.params
     off = idle.time - idle.time[0] >= params.watchdog_timeout + params.watchdog_ramp - 1e-9
     assert off.any() and (idle.torque[off] == 0.0).all()  # off within watchdog + ramp
+
+
+@settings(max_examples=count(INVARIANT_EXAMPLES), **SETTINGS)
+@given(
+    st.lists(st.tuples(coefficient, coefficient, coefficient), min_size=1, max_size=300),
+    st.sampled_from(["hold", "free", "turn:200", "push:20"]),
+    st.one_of(st.floats(1.0, 1e4), st.sampled_from([0.5, 18.0, 1800.0, 1e6])),
+    st.sampled_from([0, 1]),
+)
+def test_a_declared_slew_limit_is_never_exceeded(rows, hand, slew, delay) -> None:
+    d, k, b = (np.array(c, dtype=np.float64) for c in zip(*rows, strict=True))
+    physics = KnobPhysics(KnobParams(slew=slew, delay=delay))
+    physics.start(Hand.parse(hand))
+    played = physics.run_block(CoefficientBlock(d, k, b))
+    idle = physics.run_idle(int(0.02 * physics.params.rate))  # the watchdog's ramp as well
+    torque = np.concatenate([[0.0], played.torque, idle.torque])  # the motor starts at rest
+    step = slew * physics.params.period
+    assert np.isfinite(torque).all()
+    assert np.abs(torque).max() <= physics.params.max_torque
+    assert np.abs(np.diff(torque)).max() <= step * (1 + 1e-12) + 1e-15  # rounding only
+    assert SimKnob(slew=slew).info.slew == slew  # what `check` and the host are told

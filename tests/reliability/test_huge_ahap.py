@@ -1,0 +1,64 @@
+"""An AHAP of 440,000 transients (the issue's 58 MB file, under the 64 MB size cap) is refused
+by the documented entry limit with one sentence, before any clip is built, in bounded memory."""
+
+from __future__ import annotations
+
+import tracemalloc
+from pathlib import Path
+
+import pytest
+
+from importers import _vibration as vib
+from importers.ahap import MAX_EVENTS
+from timeline import importing
+from timeline.cli import main as cli
+from timeline.projectfile import load, save
+
+from .conftest import example_project
+
+TRANSIENTS = 440_000
+ENTRY = (
+    '{"Event":{"Time":%r,"EventType":"HapticTransient",'
+    '"EventParameters":[{"ParameterID":"HapticIntensity","ParameterValue":0.8}]}}'
+)
+
+
+@pytest.fixture(scope="module")
+def huge_ahap(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("huge") / "transients.ahap"
+    entries = ",".join(ENTRY % round(i * 1e-3, 6) for i in range(TRANSIENTS))
+    path.write_text('{"Version":1.0,"Pattern":[' + entries + "]}")
+    assert 50 * 2**20 < path.stat().st_size < vib.MAX_JSON_BYTES  # 55 MB: read, then refused
+    return path
+
+
+def test_440000_transients_are_refused_in_one_sentence_without_placing_clips(
+    huge_ahap, monkeypatch
+) -> None:
+    placed = []
+    real_place = importing.place
+    monkeypatch.setattr(importing, "place", lambda *a, **k: placed.append(1) or real_place(*a, **k))
+    tracemalloc.start()
+    try:
+        with pytest.raises(importing.FormatError) as refused:
+            importing.import_file(example_project(), huge_ahap)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert str(refused.value) == (
+        f"transients.ahap has 440,000 pattern entries; at most {MAX_EVENTS:,} are read"
+    )
+    assert placed == []  # refused while reading: no tile, placement or clip was made
+    # The parsed JSON is the whole cost (measured 8.2x the file: 472 MB for 55 MB); 440,000
+    # clips on top would be more again. Bound it at 10x the file.
+    assert peak < 10 * huge_ahap.stat().st_size
+
+
+def test_the_cli_refuses_it_and_keeps_the_project(huge_ahap, tmp_path, capsys) -> None:
+    project = tmp_path / "keep.htl"
+    save(example_project(), project)
+    before = project.read_bytes()
+    assert cli.main(["import", "--into", str(project), str(huge_ahap)]) != 0
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "has 440,000 pattern entries; at most 50,000 are read" in err
+    assert project.read_bytes() == before and load(project).tracks == example_project().tracks
