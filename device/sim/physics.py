@@ -16,12 +16,12 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy.signal import lfilter
 
 from device.sim.loop import State, servo_loop
 from device.sim.observer import OFF, observer_tuple
 from device.sim.params import KnobParams
 from device.sim.plant import step_matrix, system_matrix
+from device.sim.readings import blow_up_index, readings
 from device.sim.stability import stability_flags
 from timeline.devices import (
     CoefficientBlock,
@@ -52,6 +52,10 @@ class KnobPhysics:
         self._maps: dict[tuple[float, ...], tuple[float, ...]] = {}
         self._tables: tuple[PositionTable | None, np.ndarray] = (None, NO_TABLES)
         p = self.params
+        filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
+        self._firmware = _floats(
+            p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay, p.slew
+        )  # the loop's firmware tuple (loop.py); index 5 is the velocity filter's gain
         self._observer = (
             observer_tuple(p.period, p.observer_bandwidth) if p.estimator == "tracking" else OFF
         )
@@ -191,10 +195,6 @@ class KnobPhysics:
             tab, origin = table
             coeffs, tables, use_mass = NO_COEFFS, self._table_rows(tab), tab.mass is not None
             lookup = _floats(origin, tab.start, tab.rate)
-        filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
-        firmware = _floats(
-            p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay, p.slew
-        )
         motion = _floats(hand.push_torque, hand.push_ramp, hand.turn_speed, self.samples * p.period)
         state = _floats(self.theta, self.omega, self.grip_target, self.anchor, self.prev_meas,
                         self.vel, self.prev_vel, self.acc, self.pending,
@@ -206,7 +206,7 @@ class KnobPhysics:
             gain,
             use_mass,
             lookup,
-            firmware,
+            self._firmware,
             self._map,
             motion,
             state,
@@ -229,10 +229,7 @@ class KnobPhysics:
         """
         p = self.params
         theta, omega, grip_target, _, *estimators = state
-        path = np.append(thetas, theta)
-        speed = np.abs(np.diff(path)) * p.rate
-        bad = ~np.isfinite(path[1:]) | (speed > BLOW_UP_SPEED)
-        done = int(np.argmax(bad)) if bad.any() else thetas.size
+        done = blow_up_index(thetas, theta, p.rate, BLOW_UP_SPEED)
         flags: list[StabilityFlag] = []
         warnings: list[str] = []
         at = (self.samples + done) * p.period
@@ -243,19 +240,19 @@ class KnobPhysics:
             )
             flags.append(StabilityFlag("blow-up", self.failed, np.array([at]), np.array([0.0])))
             warnings.append(self.failed)
-            thetas, taus, path = thetas[:done], taus[:done], path[: done + 1]
-            frictions = frictions[:done]
-            theta, omega = float(path[-1]), 0.0
+            theta, omega = float(thetas[done]), 0.0
+            thetas, taus, frictions = thetas[:done], taus[:done], frictions[:done]
         if nonfinite:
             warnings.append(f"{nonfinite} non-finite torque samples were replaced by zero")
-        q = p.quantum
-        meas = (np.floor(thetas * (1.0 / q) + 0.5) * q if q else thetas) - self.anchor
-        av = p.smoothing(p.velocity_cutoff)
-        raw = np.diff(meas, prepend=self.prev_meas) * p.rate
-        velocity = lfilter([av], [1.0, av - 1.0], raw, zi=[(1.0 - av) * self.vel])[0]
-        step = np.diff(path)
-        dissipated = p.viscous * step * step * p.rate - frictions * step
-        energy = self.energy + np.cumsum(taus * step - dissipated)
+        meas, velocity, energy = readings(
+            thetas,
+            theta,
+            taus,
+            frictions,
+            _floats(p.quantum, self.anchor, p.rate),
+            _floats(self._firmware[5], self.prev_meas, self.vel),
+            _floats(p.viscous, self.energy),
+        )
         self.theta, self.omega, self.grip_target = theta, omega, grip_target
         self.prev_meas, self.vel, self.prev_vel, self.acc, self.pending, *observed = estimators
         self.observed = tuple(observed)
