@@ -15,7 +15,8 @@ import numpy as np
 import soundfile as sf
 
 from timeline.formats import FormatError, Layers, Progress
-from timeline.tiles import SampledTile
+from timeline.memory import require
+from timeline.tiles import MAX_TILE_SAMPLES, SampledTile
 
 BLOCK_FRAMES = 1 << 16
 # Written when no subtype is asked for: float where the container holds it (no rounding), else
@@ -38,12 +39,28 @@ def _open(path: Path) -> sf.SoundFile:
         raise FormatError(f"{path.name} is not an audio file that can be read ({exc})") from None
 
 
+# AIFF: "Frame count read from 'COMM' chunk (N) not equal to frame count calculated from
+# length of 'SSND' chunk (M)" -- a header that declares other than what the file holds.
+_FRAME_MISMATCH = re.compile(r"Frame count read from .*?\((\d+)\).*?\((\d+)\)", re.DOTALL)
+
+
 def _check_complete(path: Path, f: sf.SoundFile) -> None:
     for match in _SHORT_CHUNK.finditer(f.extra_info):
         if int(match.group(3)) < int(match.group(2)):
             raise FormatError(
                 f"{path.name} is truncated: its header promises more audio than the file holds"
             )
+    mismatch = _FRAME_MISMATCH.search(f.extra_info)
+    if mismatch and int(mismatch.group(1)) > int(mismatch.group(2)):
+        raise FormatError(
+            f"{path.name} is damaged or truncated: its header declares {mismatch.group(1)} "
+            f"frames but it holds {mismatch.group(2)}"
+        )
+    if f.frames > MAX_TILE_SAMPLES:
+        raise FormatError(
+            f"{path.name} declares {f.frames} frames, more than one tile can hold "
+            f"({MAX_TILE_SAMPLES})"
+        )
 
 
 def _channel_index(channel: int | str | None, channels: int, name: str) -> int | None:
@@ -57,6 +74,14 @@ def _channel_index(channel: int | str | None, channels: int, name: str) -> int |
     if not 1 <= number <= channels:
         raise FormatError(f"{name} has {channels} channel(s); there is no channel {number}")
     return number - 1
+
+
+def _grown(out: np.ndarray, size: int, name: str) -> np.ndarray:
+    """out copied into a larger array (its first part kept), within the memory available."""
+    require(8 * (out.size + size), f"reading {name}")
+    bigger = np.empty(size, dtype=np.float64)
+    bigger[: out.size] = out
+    return bigger
 
 
 class AudioFormat:
@@ -107,7 +132,9 @@ class AudioFormat:
         total = f.frames
         if total <= 0:
             raise FormatError(f"{path.name} holds no audio samples")
-        out = np.empty(total, dtype=np.float64)
+        # A compressed header (FLAC) may declare far more frames than the file holds: grow the
+        # array as audio arrives, starting from what the file's size can plausibly hold.
+        out = np.empty(min(total, max(BLOCK_FRAMES, 64 * path.stat().st_size)), dtype=np.float64)
         done = 0
         block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=np.float64)
         try:
@@ -115,6 +142,8 @@ class AudioFormat:
                 n = f.read(out=block[: min(BLOCK_FRAMES, total - done)]).shape[0]
                 if n == 0:
                     break
+                if done + n > out.size:
+                    out = _grown(out, min(total, 2 * (done + n)), path.name)
                 part = block[:n]
                 if keep is None:
                     np.mean(part, axis=1, out=out[done : done + n])

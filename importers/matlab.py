@@ -20,6 +20,7 @@ from importers._columns import (
     positive_rate,
     rate_from_axis,
 )
+from timeline import sandbox
 from timeline.formats import FormatError, Imported, Layers, Progress
 from timeline.tiles import Tile
 
@@ -27,9 +28,14 @@ PREFERRED = ("value", "data", "drive")
 
 
 def _load(path: Path) -> dict[str, Any]:
+    """The file's variables, parsed in a child process (a damaged file can crash scipy)."""
     with path.open("rb") as f:
         if f.read(128)[:19] == b"MATLAB 7.3 MAT-file":
             raise FormatError(f"{path.name} is a Matlab v7.3 (HDF5) file: save it with -v7")
+    return sandbox.run(_parse, path, what=path.name)
+
+
+def _parse(path: Path) -> dict[str, Any]:
     try:
         contents = scipy.io.loadmat(path, squeeze_me=False, mat_dtype=False)
     except Exception as exc:  # scipy's parser raises many types on malformed input

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 import opentimelineio as otio
 
-from timeline import exporting
+from timeline import exporting, sandbox
 from timeline.errors import HapticTimelineError
 from timeline.formats import FormatError, Imported, Placement, Progress, TrackInfo
 from timeline.model import Clip, Fade, Project, Track
@@ -213,36 +213,45 @@ class OtioFormat:
     def read(
         self, path: Path, *, progress: Progress | None = None, **options: Any
     ) -> Imported | None:
-        """Read back the tracks and clips of an OTIO file this program wrote."""
+        """Read back the tracks and clips of an OTIO file this program wrote.
+
+        The file is parsed in a child process: a damaged file can crash opentimelineio.
+        """
         path = Path(path)
-        try:
-            timeline = otio.adapters.read_from_file(str(path), adapter_name="otio_json")
-        except Exception as exc:  # OTIO's parser raises many types on malformed input
-            detail = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
-            raise FormatError(f"{path.name} is not a readable OTIO file ({detail})") from None
-        if not isinstance(timeline, otio.schema.Timeline):
-            raise FormatError(f"{path.name} holds no OTIO timeline")
-        meta = timeline.metadata.get(KEY)
-        if meta is None or "tiles" not in meta:
-            raise FormatError(f"{path.name} was not written by haptic-timeline (no haptic tiles)")
-        tiles = {str(k): decode_tile(v) for k, v in dict(meta["tiles"]).items()}
-        placements: list[Placement] = []
-        infos: dict[str, TrackInfo] = {}
-        for track in timeline.tracks:
-            tmeta = track.metadata.get(KEY)
-            if tmeta is None:
-                continue
-            track_key, info = _track_info(tmeta, path.name)
-            infos.setdefault(track_key, info)
-            for item in track:
-                cmeta = item.metadata.get(KEY) if isinstance(item, otio.schema.Clip) else None
-                if cmeta is not None:
-                    placements.append(_placement(cmeta, tiles, track_key, info.kind, path.name))
-        if not placements:
-            raise FormatError(f"{path.name} holds no haptic clips")
+        imported = sandbox.run(_read, path, what=path.name)
         if progress is not None:
             progress(1.0)
-        return Imported(tuple(placements), tuple(infos.values()))
+        return imported
+
+
+def _read(path: Path) -> Imported:
+    """The tracks and clips of an OTIO file (run in a child process by OtioFormat.read)."""
+    try:
+        timeline = otio.adapters.read_from_file(str(path), adapter_name="otio_json")
+    except Exception as exc:  # OTIO's parser raises many types on malformed input
+        detail = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
+        raise FormatError(f"{path.name} is not a readable OTIO file ({detail})") from None
+    if not isinstance(timeline, otio.schema.Timeline):
+        raise FormatError(f"{path.name} holds no OTIO timeline")
+    meta = timeline.metadata.get(KEY)
+    if meta is None or "tiles" not in meta:
+        raise FormatError(f"{path.name} was not written by haptic-timeline (no haptic tiles)")
+    tiles = {str(k): decode_tile(v) for k, v in dict(meta["tiles"]).items()}
+    placements: list[Placement] = []
+    infos: dict[str, TrackInfo] = {}
+    for track in timeline.tracks:
+        tmeta = track.metadata.get(KEY)
+        if tmeta is None:
+            continue
+        track_key, info = _track_info(tmeta, path.name)
+        infos.setdefault(track_key, info)
+        for item in track:
+            cmeta = item.metadata.get(KEY) if isinstance(item, otio.schema.Clip) else None
+            if cmeta is not None:
+                placements.append(_placement(cmeta, tiles, track_key, info.kind, path.name))
+    if not placements:
+        raise FormatError(f"{path.name} holds no haptic clips")
+    return Imported(tuple(placements), tuple(infos.values()))
 
 
 def _track_info(meta: Any, name: str) -> tuple[str, TrackInfo]:

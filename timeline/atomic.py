@@ -1,12 +1,21 @@
-"""Atomic file writes: the old file stays intact until the new one is complete and synced."""
+"""Atomic file writes: the old file stays intact until the new one is complete and synced.
+
+The temporary is named `.NAME.partial-PID-RANDOM.EXT` beside the target. A process killed
+mid-write cannot remove its own temporary, so every write first removes the leftovers in that
+folder whose writing process no longer exists.
+"""
 
 from __future__ import annotations
 
 import contextlib
 import os
+import re
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
+
+PARTIAL = ".partial-"  # marks a temporary: .NAME.partial-PID-RANDOM.EXT
+_WRITER = re.compile(r"\.partial-(\d+)-")
 
 
 def write_atomically(path: str | os.PathLike, write: Callable[[Path], None]) -> None:
@@ -17,7 +26,9 @@ def write_atomically(path: str | os.PathLike, write: Callable[[Path], None]) -> 
     """
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
-    fd, name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=folder)
+    remove_leftovers(folder)
+    prefix = f".{path.stem}{PARTIAL}{os.getpid()}-"
+    fd, name = tempfile.mkstemp(prefix=prefix, suffix=path.suffix, dir=folder)
     os.close(fd)
     tmp = Path(name)
     try:
@@ -30,6 +41,48 @@ def write_atomically(path: str | os.PathLike, write: Callable[[Path], None]) -> 
         raise
     with contextlib.suppress(OSError):  # some file systems cannot sync a folder
         _fsync(folder, os.O_RDONLY)
+
+
+def remove_leftovers(folder: Path) -> list[Path]:
+    """Remove temporaries that killed writers left in `folder`; returns what was removed."""
+    removed = []
+    try:
+        names = [p for p in folder.iterdir() if p.name.startswith(".") and PARTIAL in p.name]
+    except OSError:
+        return removed
+    for leftover in names:
+        match = _WRITER.search(leftover.name)
+        if match and not _alive(int(match.group(1))):
+            with contextlib.suppress(OSError):
+                leftover.unlink()
+                removed.append(leftover)
+    return removed
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError):
+        return pid > 0
+    return True
+
+
+def check_target(path: str | os.PathLike) -> None:
+    """Raise one sentence if a file cannot be written at `path` (checked before slow work)."""
+    from timeline.errors import HapticTimelineError
+
+    path = Path(path)
+    folder = path.parent if str(path.parent) else Path(".")
+    if path.is_dir():
+        raise HapticTimelineError(f"cannot write {path}: it is a folder")
+    if not folder.is_dir():
+        raise HapticTimelineError(f"cannot write {path}: the folder {folder} does not exist")
+    if not os.access(folder, os.W_OK):
+        raise HapticTimelineError(f"cannot write {path}: the folder {folder} is not writable")
 
 
 def _fsync(path: Path, flags: int) -> None:

@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from timeline import mixer
-from timeline.atomic import write_atomically
+from timeline import memory, mixer
+from timeline.atomic import check_target, write_atomically
 from timeline.errors import HapticTimelineError
 from timeline.formats import FormatError, Layers, Progress, writer_for
 from timeline.model import Project
@@ -42,6 +42,11 @@ def project_layers(
         raise FormatError("the project has no clips to export")
     rate = float(rate or project.rate)
     total = mixer.grid_length(0.0, project.duration, rate)
+    memory.require(
+        2 * 8 * total * len(mixer.active_tracks(project)),
+        f"exporting {total} samples per layer",
+        "export at a lower rate",
+    )
     chunk = max(project.duration / CHUNKS, MIN_CHUNK_SAMPLES / rate)
     parts: dict[str, list[np.ndarray]] = {}
     done = 0
@@ -73,12 +78,6 @@ def tile_layers(tile: Tile, rate: float | None = None, name: str = "value") -> L
 
     n = max(1, round(tile.duration * rate))
     return Layers({name: tile.render(0.0, 1.0 / rate, n, preset("exact"))}, float(rate))
-
-
-def _check_folder(path: Path) -> None:
-    folder = path.parent if str(path.parent) else Path(".")
-    if not folder.is_dir():
-        raise FormatError(f"cannot write {path}: the folder {folder} does not exist")
 
 
 def export_project(
@@ -138,7 +137,7 @@ def _write(fmt: Any, source: Any, path: Path, options: dict[str, Any]) -> None:
     """Write atomically; the writer is told the final path as `target` (it writes to a temporary
     beside it), so names inside the file and media written beside it follow the real name."""
     try:
-        _check_folder(path)
+        check_target(path)
         write_atomically(path, lambda tmp: fmt.write(source, tmp, target=path, **options))
     except HapticTimelineError:
         raise

@@ -6,12 +6,13 @@ to the project: a failure raises one HapticTimelineError and leaves no partial c
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any
 
 from timeline import edits
-from timeline.errors import HapticTimelineError
+from timeline.errors import EditError, HapticTimelineError
 from timeline.formats import (
     FormatError,
     Imported,
@@ -76,6 +77,7 @@ def import_file(
     A tile goes on the first track of `kind` (default drive), created if needed; a design's clips
     go on tracks of their own kinds: the file's n-th track of a kind on the project's n-th.
     """
+    _check_start(project, at)  # before the (maybe long) read
     imported = read_file(path, progress=progress, **options)
     return place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
 
@@ -94,6 +96,7 @@ def place(
     With `track_id`, placements that name no kind or track of their own (a recording, a table)
     go on that track, and its kind gives them meaning.
     """
+    _check_start(project, at)
     if track_id is not None:
         kind = project.track(track_id).kind
     infos = {t.key: t for t in imported.tracks}
@@ -115,6 +118,14 @@ def place(
         )
         clip_ids.append(clip_id)
     return project, clip_ids
+
+
+def _check_start(project: Project, at: float) -> None:
+    """Refuse a start the import would never play from (before 0 s on the time axis)."""
+    if not math.isfinite(at) or (project.axis == "time" and at < 0):
+        raise EditError(
+            f"an import cannot start at {at:g} {project.unit}: the timeline starts at 0"
+        )
 
 
 def _target_track(
@@ -164,6 +175,7 @@ def import_into_project_file(
 
     project_path = Path(project_path)
     project = projectfile.load(project_path) if project_path.exists() else edits.new_project()
+    _check_start(project, at)  # before the (maybe long) read
     imported = read_file(path, progress=progress, **options)
     project, clip_ids = place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
     projectfile.save(project, project_path)

@@ -27,6 +27,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from timeline import memory
 from timeline.clip_render import clip_sample_range, render_shape
 from timeline.errors import HapticTimelineError, RenderError
 from timeline.kinds import track_kind
@@ -36,6 +37,7 @@ from timeline.tiles import Tile
 
 BLOCK = 32768  # output samples per block: the unit of re-summing after an edit
 MAX_SAMPLES = 2**31  # one render call; longer renders go through render_chunks
+PEAK_BYTES_PER_SAMPLE = 48  # measured peak memory of one layer's render, per output sample
 
 
 class _LRU:
@@ -171,7 +173,12 @@ def grid_length(start: float, stop: float, rate: float) -> int:
         raise HapticTimelineError(f"the render rate must be positive, not {rate}")
     if stop < start:
         raise HapticTimelineError(f"the render stops ({stop}) before it starts ({start})")
-    return int(round((stop - start) * rate))
+    count = (stop - start) * rate
+    if not math.isfinite(count):
+        raise HapticTimelineError(
+            f"{start:g} to {stop:g} at {rate:g} per unit is more samples than can be counted"
+        )
+    return int(round(count))
 
 
 def _layers(
@@ -238,7 +245,13 @@ class Mixer:
         grid = _Grid(start, rate, n, q, astuple(q))
         tile_keys: dict[str, str] = {}
         result = {}
-        for kind_id, layer in _layers(project, tracks, context).items():
+        layers = _layers(project, tracks, context)
+        memory.require(
+            n * len(layers) * PEAK_BYTES_PER_SAMPLE,
+            f"rendering {n} samples of {len(layers)} layer(s)",
+            "render a shorter range or at a lower rate",
+        )
+        for kind_id, layer in layers.items():
             key = (kind_id, start, rate, n, grid.quality_key)
             try:
                 out = self._mix(project, layer, key, grid, tile_keys)

@@ -95,6 +95,11 @@ class Clip:
             raise EditError(f"a clip's stretch must be positive, not {self.stretch}")
         if self.stretch_mode not in STRETCH_MODES:
             raise EditError(f"unknown stretch mode {self.stretch_mode!r} (squeeze or repeat)")
+        if not math.isfinite(self.end):
+            raise EditError(
+                f"a clip starting at {self.start:g} and lasting {self.duration:g} ends beyond "
+                "any finite time"
+            )
 
     @property
     def source_length(self) -> float:

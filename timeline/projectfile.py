@@ -18,10 +18,12 @@ from typing import Any
 
 import numpy as np
 
+from timeline import project_fields as fields
 from timeline.atomic import write_atomically
 from timeline.errors import EditError, HapticTimelineError, ProjectFileError
 from timeline.markers import LoopRegion, Marker, markers_to_json
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
+from timeline.project_fields import FieldError
 from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.vibration_tile import VibrationTile
 
@@ -200,158 +202,141 @@ def save(project: Project, path: str | os.PathLike) -> None:
 # --- reading -----------------------------------------------------------------------------------
 
 
-_MISSING = object()
-
-
-class _Bad(Exception):
-    """Internal: the content is malformed; the message says where."""
-
-
-def _get(obj: Any, key: str, kind: type | tuple[type, ...], where: str) -> Any:
-    if type(obj) is dict:  # the common case first: a value of exactly the wanted type
-        value = obj.get(key, _MISSING)
-        if type(value) is kind:
-            return value
-    if not isinstance(obj, dict):
-        raise _Bad(f"{where} is not an object")
-    if key not in obj:
-        raise _Bad(f"{where} has no {key!r}")
-    value = obj[key]
-    if kind is float and isinstance(value, int) and not isinstance(value, bool):
-        value = float(value)
-    if not isinstance(value, kind) or (kind is not bool and isinstance(value, bool)):
-        names = kind.__name__ if isinstance(kind, type) else "/".join(k.__name__ for k in kind)
-        raise _Bad(f"{where}.{key} should be a {names}")
-    return value
-
-
-def _num(obj: Any, key: str, where: str, default: float | None = None) -> float:
-    if isinstance(obj, dict) and key not in obj and default is not None:
-        return default
-    return _get(obj, key, float, where)
-
-
 def _decode_samples(entry: Any, where: str) -> np.ndarray:
     if (
-        _get(entry, "dtype", str, where) != "<f8"
-        or _get(entry, "encoding", str, where) != "zlib+base64"
+        fields.get(entry, "dtype", str, where) != "<f8"
+        or fields.get(entry, "encoding", str, where) != "zlib+base64"
     ):
-        raise _Bad(f"{where} uses an unknown sample encoding")
-    count = _get(entry, "count", int, where)
+        raise FieldError(f"{where} uses an unknown sample encoding")
+    count = fields.get(entry, "count", int, where)
     if not 0 < count <= MAX_TILE_SAMPLES:
-        raise _Bad(f"{where} declares {count} samples, outside the supported range")
+        raise FieldError(f"{where} declares {count} samples, outside the supported range")
     try:
-        packed = base64.b64decode(_get(entry, "data", str, where), validate=True)
+        packed = base64.b64decode(fields.get(entry, "data", str, where), validate=True)
         inflater = zlib.decompressobj()
         raw = inflater.decompress(packed, count * 8 + 1)  # never inflate more than declared
     except (ValueError, zlib.error):
-        raise _Bad(f"{where} holds damaged sample data") from None
+        raise FieldError(f"{where} holds damaged sample data") from None
     if len(raw) != count * 8 or inflater.unconsumed_tail or not inflater.eof:
-        raise _Bad(f"{where} holds {len(raw) // 8} samples but declares {count}")
+        raise FieldError(f"{where} holds {len(raw) // 8} samples but declares {count}")
     return np.frombuffer(raw, dtype="<f8").astype(np.float64)
 
 
 def _tile_from_json(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
-    kind = _get(obj, "type", str, where)
-    name = _get(obj, "name", str, where)
+    return _built(lambda: _tile(obj, media, where), where)
+
+
+def _tile(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
+    kind = fields.get(obj, "type", str, where)
+    name = fields.get(obj, "name", str, where)
     if kind == "sampled":
-        key = _get(obj, "media", str, where)
+        key = fields.get(obj, "media", str, where)
         if key not in media:
-            raise _Bad(f"{where} refers to missing media {key!r}")
-        return SampledTile(media[key], _num(obj, "rate", where), name, obj.get("source", ""))
+            raise FieldError(f"{where} refers to missing media {key!r}")
+        rate = fields.number(obj, "rate", where, positive=True)
+        return SampledTile(media[key], rate, name, fields.text(obj, "source", where, ""))
     if kind == "spline":
-        points = _get(obj, "points", list, where)
+        points = fields.get(obj, "points", list, where)
         if not all(isinstance(p, list) and len(p) == 2 for p in points):
-            raise _Bad(f"{where}.points should be [time, value] pairs")
+            raise FieldError(f"{where}.points should be [time, value] pairs")
         return SplineTile(
-            tuple((float(t), float(v)) for t, v in points),
-            _num(obj, "duration", where),
-            _get(obj, "method", str, where),
+            tuple(
+                (
+                    fields.as_number(t, f"{where}.points[{i}]"),
+                    fields.as_number(v, f"{where}.points[{i}]"),
+                )
+                for i, (t, v) in enumerate(points)
+            ),
+            fields.number(obj, "duration", where, positive=True),
+            fields.get(obj, "method", str, where),
             name,
         )
     if kind == "generator":
-        params = _get(obj, "params", dict, where)
-        if not all(
-            isinstance(v, (int, float)) and not isinstance(v, bool) for v in params.values()
-        ):
-            raise _Bad(f"{where}.params should be numbers")
+        params = fields.get(obj, "params", dict, where)
         return GeneratorTile(
-            _get(obj, "generator", str, where),
-            _num(obj, "duration", where),
-            tuple(params.items()),
+            fields.get(obj, "generator", str, where),
+            fields.number(obj, "duration", where, positive=True),
+            tuple((k, fields.as_number(v, f"{where}.params.{k}")) for k, v in params.items()),
             name,
         )
     if kind == "vibration":
         return VibrationTile.from_json(obj)
-    raise _Bad(f"{where} has unknown tile type {kind!r}")
+    raise FieldError(f"{where} has unknown tile type {kind!r}")
 
 
-def _fade_from_json(obj: Any, where: str) -> Fade:
-    return Fade(_num(obj, "length", where), _get(obj, "shape", str, where))
+def _built(make: Callable[[], Any], where: str) -> Any:
+    """make(), with a refused value (EditError) reported at `where`."""
+    try:
+        return make()
+    except EditError as exc:
+        raise FieldError(f"{where}: {exc}") from None
+
+
+def _fade_from_json(obj: Any, key: str, where: str) -> Fade:
+    if key not in fields.obj(obj, where):
+        return Fade()
+    where = f"{where}.{key}"
+    fade = fields.obj(obj[key], where)
+    return _built(
+        lambda: Fade(fields.number(fade, "length", where), fields.get(fade, "shape", str, where)),
+        where,
+    )
 
 
 def _clip_from_json(obj: Any, where: str) -> Clip:
+    return _built(lambda: _clip(obj, where), where)
+
+
+def _clip(obj: Any, where: str) -> Clip:
     return Clip(
-        id=_get(obj, "id", str, where),
-        tile_id=_get(obj, "tile", str, where),
-        start=_num(obj, "start", where),
-        source_in=_num(obj, "source_in", where),
-        source_out=_num(obj, "source_out", where),
-        stretch=_num(obj, "stretch", where, 1.0),
-        stretch_mode=obj.get("stretch_mode", "squeeze"),
-        loop_phase=_num(obj, "loop_phase", where, 0.0),
-        gain=_num(obj, "gain", where, 1.0),
-        scale=_num(obj, "scale", where, 1.0),
-        offset=_num(obj, "offset", where, 0.0),
-        pivot=_num(obj, "pivot", where, 0.0),
-        reverse=bool(obj.get("reverse", False)),
-        fade_in=_fade_from_json(
-            obj.get("fade_in", {"length": 0.0, "shape": "linear"}), where + ".fade_in"
-        ),
-        fade_out=_fade_from_json(
-            obj.get("fade_out", {"length": 0.0, "shape": "linear"}), where + ".fade_out"
-        ),
+        id=fields.get(obj, "id", str, where),
+        tile_id=fields.get(obj, "tile", str, where),
+        start=fields.number(obj, "start", where),
+        source_in=fields.number(obj, "source_in", where),
+        source_out=fields.number(obj, "source_out", where),
+        stretch=fields.number(obj, "stretch", where, 1.0),
+        stretch_mode=fields.text(obj, "stretch_mode", where, "squeeze"),
+        loop_phase=fields.number(obj, "loop_phase", where, 0.0),
+        gain=fields.number(obj, "gain", where, 1.0),
+        scale=fields.number(obj, "scale", where, 1.0),
+        offset=fields.number(obj, "offset", where, 0.0),
+        pivot=fields.number(obj, "pivot", where, 0.0),
+        reverse=fields.flag(obj, "reverse", where),
+        fade_in=_fade_from_json(obj, "fade_in", where),
+        fade_out=_fade_from_json(obj, "fade_out", where),
     )
 
 
 def _track_from_json(obj: Any, where: str) -> Track:
-    clips = _get(obj, "clips", list, where)
-    full_scale = obj.get("full_scale") if isinstance(obj, dict) else None
-    if full_scale is not None and (
-        isinstance(full_scale, bool) or not isinstance(full_scale, (int, float))
-    ):
-        raise _Bad(f"{where}.full_scale should be a number or null")
+    clips = fields.get(obj, "clips", list, where)
+    full_scale = None
+    if obj.get("full_scale") is not None:
+        full_scale = fields.number(obj, "full_scale", where, positive=True)
     return Track(
-        id=_get(obj, "id", str, where),
-        kind=_get(obj, "kind", str, where),
-        name=_get(obj, "name", str, where),
+        id=fields.get(obj, "id", str, where),
+        kind=fields.get(obj, "kind", str, where),
+        name=fields.get(obj, "name", str, where),
         clips=tuple(_clip_from_json(c, f"{where}.clips[{i}]") for i, c in enumerate(clips)),
-        gain=_num(obj, "gain", where, 1.0),
-        mute=bool(obj.get("mute", False)),
-        solo=bool(obj.get("solo", False)),
-        full_scale=None if full_scale is None else float(full_scale),
+        gain=fields.number(obj, "gain", where, 1.0),
+        mute=fields.flag(obj, "mute", where),
+        solo=fields.flag(obj, "solo", where),
+        full_scale=full_scale,
     )
 
 
 def _markers_from_json(body: dict) -> tuple[tuple[Marker, ...], LoopRegion | None]:
     markers = []
-    for i, m in enumerate(_get(body, "markers", list, "project")):
+    for i, m in enumerate(fields.get(body, "markers", list, "project")):
         where = f"project.markers[{i}]"
-        if not isinstance(m, dict):
-            raise _Bad(f"{where} should be an object")
-        try:
-            markers.append(Marker(_get(m, "name", str, where), _num(m, "at", where)))
-        except EditError as exc:
-            raise _Bad(f"{where}: {exc}") from None
+        name, at = fields.get(m, "name", str, where), fields.number(m, "at", where)
+        markers.append(_built(lambda name=name, at=at: Marker(name, at), where))
     raw = body.get("loop")
     if raw is None:
         return tuple(sorted(markers, key=lambda m: m.at)), None
     if not (isinstance(raw, list) and len(raw) == 2):
-        raise _Bad("project.loop should be [start, stop] or null")
-    try:
-        loop = LoopRegion(*(float(v) for v in raw))
-    except (TypeError, ValueError, EditError) as exc:
-        raise _Bad(f"project.loop: {exc}") from None
+        raise FieldError("project.loop should be [start, stop] or null")
+    start, stop = (fields.as_number(v, "project.loop") for v in raw)
+    loop = _built(lambda: LoopRegion(start, stop), "project.loop")
     return tuple(sorted(markers, key=lambda m: m.at)), loop
 
 
@@ -364,99 +349,124 @@ def _check_references(project: Project) -> None:
     for tracks, tiles, where in designs:
         ids = [t.id for t in tracks] + [c.id for t in tracks for c in t.clips]
         if len(ids) != len(set(ids)):
-            raise _Bad(f"{where} uses one id twice")
+            raise FieldError(f"{where} uses one id twice")
         for track in tracks:
             kind = track_kind(track.kind)
             if project.axis not in kind.axes:
-                raise _Bad(f"{where} has a {kind.id} track on the {project.axis} axis")
+                raise FieldError(f"{where} has a {kind.id} track on the {project.axis} axis")
             for clip in track.clips:
                 if clip.tile_id not in tiles:
-                    raise _Bad(f"clip {clip.id!r} in {where} uses missing tile {clip.tile_id!r}")
+                    raise FieldError(
+                        f"clip {clip.id!r} in {where} uses missing tile {clip.tile_id!r}"
+                    )
     for tab in project.palette:
         missing = [i for i in tab.tile_ids if i not in project.tiles]
         if missing:
-            raise _Bad(f"palette tab {tab.name!r} lists missing tile {missing[0]!r}")
+            raise FieldError(f"palette tab {tab.name!r} lists missing tile {missing[0]!r}")
 
 
 def from_json(doc: Any) -> Project:
-    """Build a project from a parsed file, migrating older schemas; raises _Bad if malformed."""
+    """Build a project from a parsed file, migrating older schemas; FieldError if malformed."""
     if not isinstance(doc, dict) or doc.get("format") != FORMAT:
-        raise _Bad("it is not a haptic-timeline project")
+        raise FieldError("it is not a haptic-timeline project")
     version = doc.get("schema")
     if not isinstance(version, int) or isinstance(version, bool) or version < 1:
-        raise _Bad("its schema version is missing")
+        raise FieldError("its schema version is missing")
     if version > SCHEMA:
-        raise _Bad(
+        raise FieldError(
             f"it was written by a newer haptic-timeline (schema {version}; "
             f"this one reads up to {SCHEMA})"
         )
     while version < SCHEMA:
         doc = MIGRATIONS[version](doc)
         version += 1
-    body = _get(doc, "project", dict, "the file")
+    body = fields.get(doc, "project", dict, "the file")
     media = {
         k: _decode_samples(v, f"media {k!r}")
-        for k, v in _get(doc, "media", dict, "the file").items()
+        for k, v in fields.get(doc, "media", dict, "the file").items()
     }
 
     def tiles(obj: Any, where: str) -> MappingProxyType:
         return MappingProxyType(
             {
                 str(k): _tile_from_json(v, media, f"{where} tile {k!r}")
-                for k, v in _get(obj, "tiles", dict, where).items()
+                for k, v in fields.get(obj, "tiles", dict, where).items()
             }
         )
 
     def tracks(obj: Any, where: str) -> tuple[Track, ...]:
         return tuple(
             _track_from_json(t, f"{where}.tracks[{i}]")
-            for i, t in enumerate(_get(obj, "tracks", list, where))
+            for i, t in enumerate(fields.get(obj, "tracks", list, where))
         )
 
     variants = tuple(
         Variant(
-            _get(v, "name", str, f"variant {i}"),
+            fields.get(v, "name", str, f"variant {i}"),
             tracks(v, f"variant {i}"),
             tiles(v, f"variant {i}"),
         )
-        for i, v in enumerate(_get(body, "variants", list, "project"))
+        for i, v in enumerate(fields.get(body, "variants", list, "project"))
     )
     palette = tuple(
         PaletteTab(
-            _get(t, "name", str, "palette tab"),
-            _get(t, "role", str, "palette tab"),
-            tuple(str(i) for i in _get(t, "tiles", list, "palette tab")),
+            fields.get(t, "name", str, "palette tab"),
+            fields.get(t, "role", str, "palette tab"),
+            tuple(_tile_ids(fields.get(t, "tiles", list, "palette tab"))),
         )
-        for t in _get(body, "palette", list, "project")
+        for t in fields.get(body, "palette", list, "project")
     )
     active = body.get("active_variant")
     if active is not None and not isinstance(active, str):
-        raise _Bad("project.active_variant should be a name or null")
-    metadata = _get(body, "metadata", dict, "project")
+        raise FieldError("project.active_variant should be a name or null")
+    metadata = fields.json_safe(fields.get(body, "metadata", dict, "project"), "project.metadata")
     markers, loop = _markers_from_json(body)
-    project = Project(
-        axis=_get(body, "axis", str, "project"),
-        rate=_num(body, "rate", "project"),
+    project = _built(
+        lambda: _project(body, tracks, tiles, palette, variants, active, metadata, markers, loop),
+        "project",
+    )
+    _check_references(project)
+    return project
+
+
+def _project(
+    body: dict,
+    tracks: Callable[[Any, str], tuple[Track, ...]],
+    tiles: Callable[[Any, str], MappingProxyType],
+    palette: tuple[PaletteTab, ...],
+    variants: tuple[Variant, ...],
+    active: str | None,
+    metadata: dict,
+    markers: tuple[Marker, ...],
+    loop: LoopRegion | None,
+) -> Project:
+    return Project(
+        axis=fields.get(body, "axis", str, "project"),
+        rate=fields.number(body, "rate", "project", positive=True),
         tracks=tracks(body, "project"),
         tiles=tiles(body, "project"),
         palette=palette,
         variants=variants,
         active_variant=active,
         metadata=metadata,
-        next_id=_get(body, "next_id", int, "project"),
+        next_id=fields.integer(body, "next_id", "project", 1, fields.MAX_ID),
         markers=markers,
         loop=loop,
     )
-    _check_references(project)
-    return project
+
+
+def _tile_ids(items: list) -> list[str]:
+    if not all(isinstance(i, str) for i in items):
+        raise FieldError("a palette tab's tiles should be tile ids (text)")
+    return items
 
 
 def loads(text: str | bytes, name: str = "the project") -> Project:
     """Parse a project file's content."""
     try:
-        doc = json.loads(text)
+        doc = json.loads(text, parse_constant=fields.refuse_constant)
         return from_json(doc)
-    except _Bad as exc:
+    except FieldError as exc:
         raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
     except HapticTimelineError as exc:
         raise ProjectFileError(f"{name} cannot be opened: {exc}") from None

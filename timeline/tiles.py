@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from timeline.band_limit import band_limited
 from timeline.errors import EditError
 from timeline.generators import GENERATORS
 from timeline.quality import QualityPreset
@@ -231,7 +232,9 @@ class GeneratorTile:
         return _zero_outside(u, values, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
-        return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
+        """Samples on the grid u0 + k*du, with content at or above its Nyquist removed."""
+        values = _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
+        return band_limited(self.generator, values, u0, du, self.duration, dict(self.params))
 
     def with_name(self, name: str) -> GeneratorTile:
         return GeneratorTile(self.generator, self.duration, self.params, name)

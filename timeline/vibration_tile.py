@@ -98,12 +98,15 @@ class VibrationTile:
             raise EditError("a vibration tile's duration should be a number")
         if not isinstance(name, str) or not isinstance(data.get("sharpness"), str):
             raise EditError("a vibration tile needs a name and a sharpness convention")
-        design = VibrationDesign(
-            tuple(rows("amplitude", 2)),  # type: ignore[arg-type]
-            tuple(rows("frequency", 2)),  # type: ignore[arg-type]
-            tuple(Emphasis(*e) for e in rows("emphasis", 3)),
-            float(duration),
-        )
+        try:
+            design = VibrationDesign(
+                tuple(rows("amplitude", 2)),  # type: ignore[arg-type]
+                tuple(rows("frequency", 2)),  # type: ignore[arg-type]
+                tuple(Emphasis(*e) for e in rows("emphasis", 3)),
+                float(duration),
+            )
+        except OverflowError:  # an integer beyond float range, e.g. 10**400
+            raise EditError("a vibration tile holds a number too large to use") from None
         return cls(design, name, str(data.get("source", "")), data["sharpness"])
 
     def with_name(self, name: str) -> VibrationTile:

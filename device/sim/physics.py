@@ -95,7 +95,12 @@ class KnobPhysics:
     # --- public stepping -----------------------------------------------------------------
 
     def run_block(self, block: CoefficientBlock) -> Telemetry:
-        """Render one block of coefficients (one value per servo period)."""
+        """Render one block of coefficients (one value per servo period).
+
+        NaN or infinite coefficients are played as zero (no force), never silently: they are
+        flagged ("non-finite", at each such sample) and named in a warning.
+        """
+        refused = _nonfinite_flag(block, self.samples, self.params.period)
         block = block.safe()
         self.idle = 0
         self.last = (
@@ -115,6 +120,9 @@ class KnobPhysics:
         n = len(tel)
         layers = {name: values[:n] for name, values in layers.items()}
         flags = stability_flags(tel.time, layers["k"], layers["b"], layers.get("m"), self.params)
+        if refused is not None:
+            flags.append(refused)
+            tel = replace(tel, warnings=(*tel.warnings, refused.message))
         return _with(tel, layers, flags)
 
     def run_table(self, program: PositionProgram, n: int) -> Telemetry:
@@ -281,6 +289,23 @@ def local_stiffness(table: PositionTable, where: np.ndarray) -> np.ndarray:
 def _floats(*values: float) -> tuple[float, ...]:
     """Plain floats for the compiled loop (one type signature, so one compilation)."""
     return tuple(float(v) for v in values)
+
+
+def _nonfinite_flag(block: CoefficientBlock, first: int, period: float) -> StabilityFlag | None:
+    """A flag at every sample of the block where a coefficient is NaN or infinite, or None."""
+    if not block.nonfinite:
+        return None
+    named = {"d": block.d, "k": block.k, "b": block.b, "m": block.m}
+    bad = {name: ~np.isfinite(a) for name, a in named.items() if a is not None}
+    where = np.flatnonzero(np.logical_or.reduce(list(bad.values())))
+    i = int(where[0])
+    name = next(n for n, mask in bad.items() if mask[i])
+    at = (first + i) * period
+    message = (
+        f"{where.size} sample(s) held NaN or infinite coefficients (first: {name} = "
+        f"{named[name][i]} at {at:.6g} s) and were played as zero"
+    )
+    return StabilityFlag("non-finite", message, (first + where) * period, np.zeros(where.size))
 
 
 def _with(tel: Telemetry, layers: dict[str, np.ndarray], flags: list[StabilityFlag]) -> Telemetry:

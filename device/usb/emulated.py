@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import array
 import errno
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
+import numpy as np
 import usb.backend
 import usb.core
 import usb.util
@@ -37,12 +38,18 @@ class FaultPlan:
     stall_at: this transfer's endpoint halts (EPIPE) until the host clears it.
     late_at: before answering this telemetry read, the device plays out its queue and one more
         report period, as if the host had been descheduled that long (an underrun).
+    flip_bit_at: (transfer, bit): this telemetry report arrives with that bit of its bytes
+        inverted (a transmission error the CRC must catch).
+    lie_at: (transfer, torque): this telemetry report's first torque sample is replaced by the
+        value and the report resealed with a valid CRC (firmware reporting garbage: NaN, 1e30).
     """
 
     unplug_after: int | None = None
     timeout_at: int | None = None
     stall_at: int | None = None
     late_at: int | None = None
+    flip_bit_at: tuple[int, int] | None = None
+    lie_at: tuple[int, float] | None = None
 
 
 class EmulatedDevice:
@@ -87,6 +94,22 @@ class EmulatedDevice:
         if i == f.timeout_at:
             raise usb.core.USBTimeoutError(*_TIMEOUT)
         return i
+
+
+def _damaged(payload: bytes, i: int, faults: FaultPlan) -> bytes:
+    """A telemetry report with the damage planned for transfer i, if any."""
+    if faults.flip_bit_at is not None and faults.flip_bit_at[0] == i:
+        bit = faults.flip_bit_at[1] % (8 * len(payload))
+        damaged = bytearray(payload)
+        damaged[bit // 8] ^= 1 << (bit % 8)
+        return bytes(damaged)
+    if faults.lie_at is not None and faults.lie_at[0] == i:
+        report = p.decode_report(payload)
+        samples = np.array(report.samples, dtype=np.float32)
+        if len(samples):
+            samples[0, 2] = faults.lie_at[1]
+        return p.encode_report(replace(report, samples=samples))
+    return payload
 
 
 class EmulatedBackend(usb.backend.IBackend):
@@ -182,7 +205,7 @@ class EmulatedBackend(usb.backend.IBackend):
             raise usb.core.USBError(*_PIPE)
         if i == dev_handle.faults.late_at:
             dev_handle.knob.starve()
-        payload = dev_handle.knob.send()
+        payload = _damaged(dev_handle.knob.send(), i, dev_handle.faults)
         if len(payload) > len(buff) * buff.itemsize:
             raise usb.core.USBError(*_OVERFLOW)
         buff[: len(payload)] = array.array("B", payload)

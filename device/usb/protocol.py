@@ -7,13 +7,14 @@ Everything on the wire is little-endian; coefficients and telemetry are IEEE-754
 from __future__ import annotations
 
 import struct
+import zlib
 from dataclasses import dataclass
 
 import numpy as np
 
 from timeline.errors import HapticTimelineError
 
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2  # 2: blocks and reports end in a CRC-32 of their bytes
 
 # Default IDs: pid.codes' open-source VID with one of its *test* PIDs (1209:0001). A test ID is
 # for development only; a product built to this protocol registers its own PID with pid.codes.
@@ -80,6 +81,7 @@ _BLOCK_HEADER = struct.Struct("<2sBBIHH")  # magic, version, mask, seq, n, flags
 _REPORT_HEADER = struct.Struct("<2sBBIIHHIIII")  # magic, version, state, seq, first, n, flags,
 # fill, underruns, overruns, last block seq
 _INFO = struct.Struct("<2sBBBBHIfffffIHHBBHHfff")
+_CRC = struct.Struct("<I")  # trailer of blocks and reports
 _LIMITS = struct.Struct("<fHH")  # max torque, watchdog ms, reserved
 BLOCK_HEADER_SIZE = _BLOCK_HEADER.size
 REPORT_HEADER_SIZE = _REPORT_HEADER.size
@@ -176,7 +178,9 @@ def decode_info(data: bytes) -> InfoPayload:
     if magic != _INFO_MAGIC:
         raise ProtocolError("device info does not start with the protocol's magic bytes")
     if version != PROTOCOL_VERSION:
-        raise ProtocolError(f"device speaks protocol version {version}, this host speaks 1")
+        raise ProtocolError(
+            f"device speaks protocol version {version}, this host speaks {PROTOCOL_VERSION}"
+        )
     if kind not in KINDS:
         raise ProtocolError(f"device reports an unknown kind {kind}")
     limits = (tmax, kmax, bmax, mmax, res, inertia, viscous, coulomb)
@@ -221,6 +225,19 @@ class Block:
     end: bool = False
 
 
+def _sealed(data: bytes) -> bytes:
+    """data followed by its CRC-32 (zlib's, little-endian): the receiver sees any bit flip."""
+    return data + _CRC.pack(zlib.crc32(data))
+
+
+def _unsealed(data: bytes, what: str) -> bytes:
+    """data without its CRC-32, or ProtocolError if the CRC does not match (damaged bytes)."""
+    body, (crc,) = data[: -_CRC.size], _CRC.unpack_from(data, len(data) - _CRC.size)
+    if zlib.crc32(body) != crc:
+        raise ProtocolError(f"{what}'s CRC-32 does not match its bytes (damaged on the way)")
+    return body
+
+
 def encode_block(block: Block) -> bytes:
     """Bytes of one OUT transfer."""
     samples = np.ascontiguousarray(block.samples, dtype="<f4")
@@ -230,19 +247,20 @@ def encode_block(block: Block) -> bytes:
     head = _BLOCK_HEADER.pack(
         _BLOCK_MAGIC, PROTOCOL_VERSION, block.mask, block.seq, len(samples), flags
     )
-    return head + samples.tobytes()
+    return _sealed(head + samples.tobytes())
 
 
 def decode_block(data: bytes) -> Block:
     """Parse one OUT transfer, or raise ProtocolError."""
     data = bytes(data)
-    if len(data) < BLOCK_HEADER_SIZE:
+    if len(data) < BLOCK_HEADER_SIZE + _CRC.size:
         raise ProtocolError(f"a block of {len(data)} bytes is shorter than its header")
+    data = _unsealed(data, "a block")
     magic, version, mask, seq, n, flags = _BLOCK_HEADER.unpack_from(data)
     if magic != _BLOCK_MAGIC:
         raise ProtocolError("a block does not start with the protocol's magic bytes")
     if version != PROTOCOL_VERSION:
-        raise ProtocolError(f"a block has protocol version {version}, expected 1")
+        raise ProtocolError(f"a block has protocol version {version}, expected {PROTOCOL_VERSION}")
     if mask == 0 or mask & ~ALL_CHANNELS:
         raise ProtocolError(f"a block has an invalid channel mask {mask:#x}")
     if flags & ~BLOCK_FLAG_END:
@@ -256,7 +274,7 @@ def decode_block(data: bytes) -> Block:
 
 def block_bytes(n: int, mask: int) -> int:
     """Size in bytes of an OUT transfer carrying n samples."""
-    return BLOCK_HEADER_SIZE + 4 * channel_count(mask) * n
+    return BLOCK_HEADER_SIZE + 4 * channel_count(mask) * n + _CRC.size
 
 
 def block_samples(wanted: int, mask: int, max_block: int) -> int:
@@ -297,21 +315,24 @@ def encode_report(report: Report) -> bytes:
         report.overruns,
         report.last_block_seq,
     )
-    return head + samples.tobytes()
+    return _sealed(head + samples.tobytes())
 
 
 def decode_report(data: bytes) -> Report:
     """Parse one IN transfer, or raise ProtocolError."""
     data = bytes(data)
-    if len(data) < REPORT_HEADER_SIZE:
+    if len(data) < REPORT_HEADER_SIZE + _CRC.size:
         raise ProtocolError(f"a telemetry report of {len(data)} bytes is shorter than its header")
+    data = _unsealed(data, "a telemetry report")
     (magic, version, state, seq, first, n, flags, fill, underruns, overruns, last_seq) = (
         _REPORT_HEADER.unpack_from(data)
     )
     if magic != _REPORT_MAGIC:
         raise ProtocolError("a telemetry report does not start with the protocol's magic bytes")
     if version != PROTOCOL_VERSION:
-        raise ProtocolError(f"a telemetry report has protocol version {version}, expected 1")
+        raise ProtocolError(
+            f"a telemetry report has protocol version {version}, expected {PROTOCOL_VERSION}"
+        )
     if state not in STATES:
         raise ProtocolError(f"a telemetry report has an unknown state {state}")
     if len(data) != REPORT_HEADER_SIZE + 12 * n:
@@ -322,7 +343,7 @@ def decode_report(data: bytes) -> Report:
 
 def report_bytes(n: int) -> int:
     """Size in bytes of an IN transfer carrying n samples."""
-    return REPORT_HEADER_SIZE + 12 * n
+    return REPORT_HEADER_SIZE + 12 * n + _CRC.size
 
 
 def make_safe(samples: np.ndarray, limits: np.ndarray) -> tuple[np.ndarray, int, int]:

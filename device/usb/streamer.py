@@ -68,6 +68,10 @@ class Chunker:
         return rows, self._done and not self._have
 
 
+TORQUE_TOLERANCE = 1e-6  # relative: the float32 limit itself is a valid report
+MAX_REPORTED_SPEED = 1e6  # rad/s: beyond this a report is corrupt, not a knob turning
+
+
 class Stream:
     """One play: START, blocks paced by telemetry, END, and the telemetry it gathered."""
 
@@ -140,6 +144,7 @@ class Stream:
                 f"the USB haptic device's telemetry jumped from sample {self._n_received} "
                 f"to {report.first_sample}"
             )
+        self._check_samples(report.samples)
         self._received.append(report.samples)
         self._n_received += len(report.samples)
         at = f"{self._n_received / self.rate:.3f} s"
@@ -159,6 +164,29 @@ class Stream:
             raise DeviceFault(f"the USB haptic device reported {names} at {at}; playback stopped")
         if report.state == p.STATE_IDLE and not end:
             raise DeviceFault(f"the USB haptic device stopped by itself at {at}")
+
+    def _check_samples(self, rows: np.ndarray) -> None:
+        """Refuse telemetry that cannot be true: NaN/inf, or torque beyond the limit it was sent.
+
+        The device clamps every sample to the limit it was given, so a larger torque means the
+        report is corrupt or the device broke its promise; either way playback stops (STOP).
+        """
+        if not len(rows):
+            return
+        bad = ~np.isfinite(rows).all(axis=1)
+        torque_limit = float(self.limits[0]) * (1 + TORQUE_TOLERANCE)
+        bad |= np.abs(rows[:, 2].astype(np.float64)) > torque_limit
+        bad |= np.abs(rows[:, 1].astype(np.float64)) > MAX_REPORTED_SPEED
+        if not bad.any():
+            return
+        i = int(np.argmax(bad))
+        angle, speed, torque = (float(x) for x in rows[i])
+        raise DeviceFault(
+            f"the USB haptic device reported an impossible sample at "
+            f"{(self._n_received + i) / self.rate:.4f} s (angle {angle:g} rad, speed "
+            f"{speed:g} rad/s, torque {torque:g} N*m; limit {float(self.limits[0]):g} N*m), "
+            "so playback stopped"
+        )
 
     def telemetry(self) -> Telemetry:
         """What the device reported for the samples sent, with the layers as sent."""

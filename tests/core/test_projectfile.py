@@ -117,7 +117,7 @@ def test_decompression_bomb_is_stopped_at_the_declared_size(tmp_path):
 def test_wrong_types_and_missing_references(tmp_path):
     doc = _saved_doc(tmp_path)
     doc["project"]["tracks"][0]["clips"][0]["start"] = "soon"
-    _bad(tmp_path, doc, "start should be a float")
+    _bad(tmp_path, doc, "start should be a number, not text")
     doc = _saved_doc(tmp_path)
     doc["project"]["tracks"][0]["clips"][0]["tile"] = "nope"
     _bad(tmp_path, doc, "missing tile 'nope'")

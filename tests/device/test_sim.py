@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from device.sim import KnobParams, KnobPhysics, SimKnob
-from timeline.devices import CoefficientBlock, DeviceError, Hand, open_device
+from timeline.devices import CoefficientBlock, DeviceError, Hand, PositionTable, open_device
 
 IDEAL = dict(quantum=0.0, coulomb=0.0, velocity_cutoff=0.0)  # the textbook sampled knob
 
@@ -93,10 +93,25 @@ def test_non_finite_coefficients_never_reach_the_motor() -> None:
     assert np.isfinite(tel.torque).all() and np.isfinite(tel.angle).all()
     assert (tel.torque[10:20] == 0).all()  # a non-finite coefficient counts as 0
     assert tel.torque[30] == pytest.approx(0.01)
+    flag = tel.flag("non-finite")  # played as zero, but never silently
+    assert flag.count == 11 and flag.first_time == pytest.approx(tel.time[10])
+    assert np.allclose(flag.times, tel.time[[*range(10, 20), 30]])
+    assert "11 sample(s) held NaN or infinite coefficients (first: d = nan" in tel.warnings[0]
     big = KnobPhysics()
     big.start(Hand("free"))
     tel = big.run_block(block(50, d=1e308, k=-1e308, b=1e308))
     assert np.isfinite(tel.torque).all() and np.abs(tel.torque).max() <= 0.18
+
+
+def test_a_position_table_with_nan_is_refused_not_zeroed() -> None:
+    torque = np.linspace(-0.01, 0.01, 50)
+    torque[7] = np.nan
+    with pytest.raises(DeviceError, match="torque at sample 7 is nan, not a finite number"):
+        PositionTable(0.0, 100.0, torque)
+    damping = np.zeros(50)
+    damping[3] = -np.inf
+    with pytest.raises(DeviceError, match="damping at sample 3 is -inf"):
+        PositionTable(0.0, 100.0, np.zeros(50), damping)
 
 
 def test_watchdog_ramps_torque_to_zero_within_the_stated_time() -> None:

@@ -35,7 +35,7 @@ def test_pyusb_parses_the_vendor_interface_and_its_bulk_endpoints(high_speed, pa
     assert (cfg.bConfigurationValue, cfg.wTotalLength, cfg.bNumInterfaces) == (1, 32, 1)
     intf = cfg[(0, 0)]
     assert (intf.bInterfaceClass, intf.bInterfaceSubClass, intf.bInterfaceProtocol) == (
-        0xFF, 0x48, 1,
+        0xFF, 0x48, p.PROTOCOL_VERSION,
     )  # fmt: skip
     eps = [(e.bEndpointAddress, usb.util.endpoint_type(e.bmAttributes), e.wMaxPacketSize)
            for e in intf]  # fmt: skip

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import struct
+import zlib
 
 import numpy as np
 import pytest
@@ -17,19 +18,21 @@ MASKS = st.integers(1, 15)
 def test_a_block_has_the_documented_byte_layout() -> None:
     block = p.Block(seq=7, mask=p.CH_D | p.CH_B, samples=np.array([[0.5, -2.0]]), end=True)
     wire = p.encode_block(block)
-    assert wire == (
-        b"HB" + bytes([1, 0b0101]) + (7).to_bytes(4, "little") + (1).to_bytes(2, "little")
+    body = (
+        b"HB" + bytes([2, 0b0101]) + (7).to_bytes(4, "little") + (1).to_bytes(2, "little")
         + (1).to_bytes(2, "little") + struct.pack("<ff", 0.5, -2.0)
     )  # fmt: skip
-    assert len(wire) == p.block_bytes(1, block.mask) == 20
+    assert wire == body + zlib.crc32(body).to_bytes(4, "little")
+    assert len(wire) == p.block_bytes(1, block.mask) == 24
 
 
 def test_a_report_has_the_documented_byte_layout() -> None:
     rows = np.array([[0.25, -1.5, 0.125]], dtype=np.float32)
     report = p.Report(3, p.STATE_RUNNING, 100, p.FLAG_SATURATED, 250, 0, 0, 9, rows)
     wire = p.encode_report(report)
-    header = struct.pack("<2sBBIIHHIIII", b"HT", 1, 1, 3, 100, 1, 64, 250, 0, 0, 9)
-    assert wire == header + struct.pack("<fff", 0.25, -1.5, 0.125)
+    header = struct.pack("<2sBBIIHHIIII", b"HT", 2, 1, 3, 100, 1, 64, 250, 0, 0, 9)
+    body = header + struct.pack("<fff", 0.25, -1.5, 0.125)
+    assert wire == body + zlib.crc32(body).to_bytes(4, "little")
     assert p.decode_report(wire).samples.tolist() == rows.tolist()
 
 
@@ -46,7 +49,7 @@ def test_device_info_round_trips_in_58_bytes() -> None:
 
 @pytest.mark.parametrize(
     "field, value, words",
-    [(1, 2, "protocol version 2"), (6, 0, "non-positive"), (7, float("nan"), "non-finite"),
+    [(1, 3, "protocol version 3"), (6, 0, "non-positive"), (7, float("nan"), "non-finite"),
      (15, 0, "invalid channel mask"), (14, 0, "block, report or buffer"),
      (12, 100, "block, report or buffer"), (20, -1e-4, "non-finite rate or limit")],
 )  # fmt: skip
@@ -100,7 +103,7 @@ def _near_valid(magic: bytes, header_size: int) -> st.SearchStrategy[bytes]:
     """Bytes that start like a real message, so the decoder gets past its first checks."""
     return st.builds(
         lambda version, rest: magic + bytes([version]) + rest,
-        st.sampled_from([1, 1, 1, 0, 2]),
+        st.sampled_from([p.PROTOCOL_VERSION] * 3 + [0, 1]),
         st.binary(min_size=header_size - 3, max_size=header_size + 80),
     )
 
@@ -149,6 +152,21 @@ def test_any_bytes_decode_to_a_report_or_a_protocol_error(data: bytes) -> None:
     except p.ProtocolError:
         return
     assert p.encode_report(report) == data
+
+
+def test_every_single_bit_flip_is_refused_by_the_crc() -> None:
+    rows = np.array([[0.1, -2.0, 0.05], [0.2, 3.0, -0.17], [0.0, 0.0, 0.0]], dtype=np.float32)
+    report = p.encode_report(p.Report(5, p.STATE_RUNNING, 300, 0, 90, 0, 0, 4, rows))
+    block = p.encode_block(p.Block(9, p.ALL_CHANNELS, rows[:, :1].repeat(4, axis=1), False))
+    flips = 0
+    for wire, decode in ((report, p.decode_report), (block, p.decode_block)):
+        for bit in range(8 * len(wire)):
+            damaged = bytearray(wire)
+            damaged[bit // 8] ^= 1 << (bit % 8)
+            with pytest.raises(p.ProtocolError):
+                decode(bytes(damaged))
+            flips += 1
+    assert flips == 8 * (len(report) + len(block)) == 8 * (72 + 64)
 
 
 @given(st.one_of(st.binary(max_size=60), _near_valid(b"HI", p.INFO_SIZE)))

@@ -21,6 +21,7 @@ from device.usb import UsbKnob
 from device.usb import protocol as p
 from device.usb.emulated import EmulatedBackend, EmulatedDevice, FaultPlan
 from device.usb.errors import (
+    DeviceFault,
     DeviceTimeout,
     DeviceUnderrun,
     DeviceUnplugged,
@@ -122,7 +123,7 @@ def test_a_mass_layer_streams_all_four_coefficients() -> None:
     usb = knob.play(blocks, Hand("free"))
     assert_same_as_sim(usb, SimKnob().play(blocks, Hand("free")))
     assert {b.mask for b in wire(emulated)} == {p.ALL_CHANNELS}
-    assert len(emulated.wire_out[0]) == 1612  # 10 ms of four float32 channels + the header
+    assert len(emulated.wire_out[0]) == 1616  # 10 ms of four float32 channels, header, CRC
 
 
 def test_a_small_device_buffer_is_never_overrun() -> None:
@@ -153,6 +154,11 @@ STEADY = dict(d=0.05, k=0.5)  # held by a 1 N*m/rad grip: about 33 mNm at any fa
         (FaultPlan(timeout_at=10), DeviceTimeout, r"did not answer within 1000 ms while streaming"),
         (FaultPlan(stall_at=9), EndpointStalled, r"stalled endpoint 0x81 .* reading telemetry"),
         (FaultPlan(late_at=11), DeviceUnderrun, r"ran out of samples at .* host fell behind"),
+        (FaultPlan(flip_bit_at=(9, 900)), UsbDeviceError, r"CRC-32 does not match its bytes"),
+        (FaultPlan(flip_bit_at=(9, 7)), UsbDeviceError, r"CRC-32 does not match its bytes"),
+        (FaultPlan(lie_at=(9, math.nan)), DeviceFault, r"impossible sample .* torque nan N\*m"),
+        (FaultPlan(lie_at=(9, 1e30)), DeviceFault, r"impossible sample .* torque 1e\+30 N\*m"),
+        (FaultPlan(lie_at=(9, -0.2)), DeviceFault, r"torque -0.2 N\*m; limit 0.18 N\*m"),
     ],
 )
 def test_a_failure_stops_the_device_and_says_why_in_one_sentence(faults, error, words) -> None:
@@ -228,7 +234,7 @@ def test_a_vibrotactile_device_receives_the_drive_term_only() -> None:
     knob, emulated = rig(EmulatedKnob(vibrotactile=True))
     usb = knob.play(blocks, Hand("hold"))
     sent = wire(emulated)
-    assert {b.mask for b in sent} == {p.CH_D} and len(emulated.wire_out[0]) == 12 + 4 * 100
+    assert {b.mask for b in sent} == {p.CH_D} and len(emulated.wire_out[0]) == 12 + 4 * 100 + 4
     expected = f32(np.clip(blocks[0].d, -1.0, 1.0))
     assert np.array_equal(usb.torque, expected) and np.array_equal(usb.layers["d"], expected)
     assert not usb.angle.any() and not usb.velocity.any()

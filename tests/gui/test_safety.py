@@ -42,7 +42,7 @@ def test_autosave_survives_a_killed_process_and_is_offered(window, data_home, tm
         assert child.stdout.readline().strip() == b"edited"
         folder = data_home / "haptic-timeline" / "autosave"
         deadline = time.monotonic() + 20
-        while not list(folder.glob("*.json")) and time.monotonic() < deadline:
+        while not list(folder.glob("session-*.htl")) and time.monotonic() < deadline:
             time.sleep(0.05)
     finally:
         child.send_signal(signal.SIGKILL)

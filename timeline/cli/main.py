@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import difflib
 import importlib
 import os
 import sys
+from pathlib import Path
 
 from timeline.errors import HapticTimelineError
 
@@ -37,19 +39,36 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _with_default_verb(argv: list[str], verbs: set[str]) -> list[str]:
-    """`haptic-timeline` and `haptic-timeline PROJECT` open the editor, like `edit`."""
+    """`haptic-timeline` and `haptic-timeline PROJECT` open the editor, like `edit`.
+
+    A first word that is neither a verb nor a file name (no extension, no folder, not an
+    existing file) is a mistyped verb: HapticTimelineError names the verbs.
+    """
     if not argv:
         return ["edit"]
-    if argv[0] not in verbs and not argv[0].startswith("-"):
+    first = argv[0]
+    if first in verbs or first.startswith("-"):
+        return argv
+    if Path(first).suffix or os.sep in first or Path(first).exists():
         return ["edit", *argv]
-    return argv
+    close = difflib.get_close_matches(first, sorted(verbs), n=1)
+    hint = f"did you mean {close[0]!r}? " if close else ""
+    raise HapticTimelineError(
+        f"unknown verb {first!r} ({hint}verbs: {', '.join(sorted(verbs))}; "
+        "a project to open ends in .htl)"
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run one verb; a user's mistake prints one sentence on stderr and returns non-zero."""
     parser = build_parser()
     verbs = set(parser._subparsers._group_actions[0].choices)  # type: ignore[union-attr]
-    args = parser.parse_args(_with_default_verb(sys.argv[1:] if argv is None else argv, verbs))
+    try:
+        argv = _with_default_verb(sys.argv[1:] if argv is None else argv, verbs)
+    except HapticTimelineError as exc:
+        print(f"haptic-timeline: {exc}", file=sys.stderr)
+        return 2
+    args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         parser.print_help()
         return 2
@@ -65,6 +84,10 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:
         where = f" ({exc.filename})" if exc.filename else ""
         print(f"haptic-timeline: {exc.strerror or exc}{where}", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print("haptic-timeline: ran out of memory; try a shorter range or a lower rate",
+              file=sys.stderr)  # fmt: skip
         return 1
     except KeyboardInterrupt:
         print("haptic-timeline: interrupted", file=sys.stderr)

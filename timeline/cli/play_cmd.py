@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from timeline.atomic import check_target
 from timeline.errors import HapticTimelineError
 from timeline.quality import DEFAULT_QUALITY, PRESETS
 
@@ -98,6 +99,7 @@ def run(args: argparse.Namespace) -> int:
             f"--duration must be a positive number of seconds, not {args.duration}"
         )
     origin = None if args.origin is None else math.radians(args.origin)
+    _check_outputs(args)
     progress = _Progress()
     options = dict(parse_option(text) for text in args.device_option)
     with open_device(args.device, **options) as device:
@@ -115,6 +117,23 @@ def run(args: argparse.Namespace) -> int:
         plot_telemetry(telemetry, playback, args.plot, title, device.info.max_output)
         print(f"plot -> {args.plot}", file=sys.stderr)
     return 0
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """Refuse an unwritable -o or --plot before playing, not after."""
+    if args.output:
+        check_target(args.output)
+    if args.plot:
+        check_target(args.plot)
+        from matplotlib.figure import Figure
+
+        kinds = Figure().canvas.get_supported_filetypes()
+        suffix = Path(args.plot).suffix.lower().lstrip(".")
+        if suffix not in kinds:
+            raise HapticTimelineError(
+                f"--plot cannot write .{suffix or '(no extension)'} files "
+                f"(choose from {', '.join(sorted(kinds))})"
+            )
 
 
 def _layer_axis(ax, t: np.ndarray, values: np.ndarray, kind_id: str) -> None:

@@ -39,6 +39,7 @@ def _write_npz(layers: Layers, path: Path) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.band_limit import aliasing_notes
     from timeline.exporting import write_layers
     from timeline.formats import Layers
     from timeline.mixer import render
@@ -49,6 +50,8 @@ def run(args: argparse.Namespace) -> int:
     start = args.start
     stop = project.duration if args.stop is None else args.stop
     columns = render(project, start, stop, rate, args.quality, parse_tracks(args.tracks))
+    for note in aliasing_notes(project, rate):
+        print(f"haptic-timeline: warning: {note}", file=sys.stderr)
     if not columns:
         raise HapticTimelineError("the project has no layers to render (no clips, or all muted)")
     layers = Layers(columns, rate, start, project.axis)

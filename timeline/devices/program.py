@@ -112,7 +112,12 @@ class PositionTable:
             values = getattr(self, name)
             if values is None:
                 continue
-            arr = np.where(np.isfinite(a := _as_array(name, values)), a, 0.0)
+            arr = _as_array(name, values).copy()
+            if not np.isfinite(arr).all():
+                i = int(np.flatnonzero(~np.isfinite(arr))[0])
+                raise DeviceError(
+                    f"the position table's {name} at sample {i} is {arr[i]}, not a finite number"
+                )
             object.__setattr__(self, name, arr)
             if n is not None and arr.size != n:
                 raise DeviceError("position tables of one program differ in length")

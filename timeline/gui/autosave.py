@@ -11,6 +11,7 @@ import platformdirs
 from PySide6.QtCore import QObject, QTimer
 
 from timeline import projectfile
+from timeline.atomic import write_atomically
 from timeline.model import Project
 
 from .document import Document
@@ -92,9 +93,10 @@ class Autosaver(QObject):
         if not self.doc.modified:
             self.discard()
             return
-        projectfile.save(self.doc.project, self.path)
         meta = {"pid": os.getpid(), "path": str(self.doc.path) if self.doc.path else ""}
-        self.path.with_suffix(".json").write_text(json.dumps(meta))
+        text = json.dumps(meta).encode("utf-8")  # the companion first: a kill between the two
+        write_atomically(self.path.with_suffix(".json"), lambda tmp: tmp.write_bytes(text))
+        projectfile.save(self.doc.project, self.path)  # leaves the previous autosave, still found
 
     def discard(self) -> None:
         """Remove this session's autosave (after a save or a clean close)."""

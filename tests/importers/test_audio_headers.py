@@ -1,0 +1,55 @@
+"""Audio headers that declare more frames than the file holds are refused, never allocated."""
+
+import struct
+
+import numpy as np
+import pytest
+import soundfile as sf
+
+from importers.audio import FORMAT
+from timeline.formats import FormatError
+
+TONE = np.sin(np.arange(1000) / 10) * 0.5
+
+
+def _flac_declaring(tmp_path, frames: int):
+    path = tmp_path / "x.flac"
+    sf.write(path, TONE, 8000, subtype="PCM_16")
+    data = bytearray(path.read_bytes())
+    # STREAMINFO starts at byte 8; its total-samples field is the low 36 bits of bytes 18..25.
+    packed = int.from_bytes(data[18:26], "big")
+    packed = (packed & ~(2**36 - 1)) | frames
+    data[18:26] = packed.to_bytes(8, "big")
+    path.write_bytes(bytes(data))
+    return path
+
+
+def test_a_flac_declaring_more_frames_than_a_tile_holds_is_refused(tmp_path):
+    path = _flac_declaring(tmp_path, 2**36 - 1)
+    with pytest.raises(FormatError, match=r"declares 68719476735 frames, more than one tile"):
+        FORMAT.read(path)
+
+
+def test_a_flac_declaring_a_billion_frames_is_truncated_not_a_memory_error(tmp_path):
+    path = _flac_declaring(tmp_path, 10**9)  # 8 GB if allocated up front; the file holds 1000
+    with pytest.raises(FormatError, match=r"^x.flac (is truncated|could not be read to the end)"):
+        FORMAT.read(path)
+
+
+def test_an_honest_flac_reads_exactly(tmp_path):
+    path = tmp_path / "ok.flac"
+    sf.write(path, TONE, 8000, subtype="PCM_24")
+    tile = FORMAT.read(path)
+    assert tile.rate == 8000 and len(tile.data) == 1000
+    assert np.max(np.abs(tile.data - TONE)) < 2**-22
+
+
+def test_an_aiff_declaring_more_frames_than_it_holds_is_refused(tmp_path):
+    path = tmp_path / "x.aiff"
+    sf.write(path, TONE, 8000, subtype="PCM_16")
+    data = bytearray(path.read_bytes())
+    comm = data.find(b"COMM")
+    struct.pack_into(">I", data, comm + 10, 2**31 - 1)  # numSampleFrames
+    path.write_bytes(bytes(data))
+    with pytest.raises(FormatError, match=r"declares 2147483647 frames but it holds 1000"):
+        FORMAT.read(path)
