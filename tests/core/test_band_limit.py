@@ -64,3 +64,11 @@ def test_square_waves_with_aliasing_harmonics_are_named(tmp_path, capsys):
     save(p, path)
     assert cli.main(["render", str(path), "-o", str(tmp_path / "o.csv")]) == 0
     assert "warning: clip" in capsys.readouterr().err
+
+
+def test_play_names_aliasing_clips_before_playing(tmp_path, capsys):
+    path = tmp_path / "sq.htl"
+    save(_project(generator("square", 0.02, frequency=2000.0)), path)
+    assert cli.main(["play", str(path)]) == 0
+    err = capsys.readouterr().err
+    assert "warning: clip" in err and "square wave above 5000 Hz alias" in err

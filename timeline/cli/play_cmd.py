@@ -88,6 +88,7 @@ def parse_option(text: str) -> tuple[str, Any]:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.band_limit import aliasing_notes
     from timeline.devices import Hand, open_device
     from timeline.playback import prepare
     from timeline.projectfile import load
@@ -104,6 +105,9 @@ def run(args: argparse.Namespace) -> int:
     options = dict(parse_option(text) for text in args.device_option)
     with open_device(args.device, **options) as device:
         playback = prepare(project, device.info, args.duration, hand, args.quality, origin)
+        rate = device.info.rate if project.axis == "time" else project.rate
+        for note in aliasing_notes(project, rate):
+            print(f"haptic-timeline: warning: {note}", file=sys.stderr)
         telemetry = device.play(playback.program, hand, progress)
     progress.done()
     print(f"{Path(args.project).name} on {device.info.name} with hand {hand}")
