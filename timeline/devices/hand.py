@@ -13,6 +13,7 @@ HAND_MODES = ("hold", "turn", "push", "free")
 _HAND_RE = re.compile(
     r"^\s*(?:([a-z]+)\s*-\s*)?(hold|turn|push|free)\s*(?::\s*([^:\s]+)\s*)?$", re.IGNORECASE
 )
+NAMED = [f"{name}-" for name in HAND_MODELS if name != DEFAULT_MODEL]
 DEFAULT_TURN_DEG_PER_S = 90.0
 DEFAULT_PUSH_MNM = 20.0
 
@@ -64,7 +65,7 @@ class Hand:
         if not match:
             raise HandSpecError(
                 f"cannot read hand {text!r} (use hold, free, turn:DEG_PER_S or push:MNM,"
-                f" optionally after a model and a dash: {'-, '.join(HAND_MODELS)}-)"
+                f" optionally after a named hand and a dash: {', '.join(NAMED)})"
             )
         model, mode, raw = (
             (match.group(1) or DEFAULT_MODEL).lower(),
