@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from timeline.bench.convert import pair_agreement
+from timeline.bench.convert import pair_agreement, pair_fit
 
 
 def test_agreement_with_lofelt_studio(audio_pairs: Path) -> None:
@@ -27,3 +27,16 @@ def test_agreement_with_lofelt_studio(audio_pairs: Path) -> None:
     for name in ("Body1", "Wood1"):
         assert found[name].amplitude_r >= 0.985 and found[name].amplitude_mae <= 0.012
         assert found[name].onset_f1 == 1.0
+
+
+def test_lofelt_made_its_breakpoints_with_the_same_amplitude_analysis(audio_pairs: Path) -> None:
+    """At the points Lofelt's analysis made, its envelope is ours: the same, or at another level."""
+    fits = {p.stem: pair_fit(p) for p in sorted(audio_pairs.glob("*.wav"))}
+    for name in ("Body1", "Glass1", "Wood1"):  # the same analysis at the sound's own level
+        assert fits[name].analysis_points >= 11
+        assert abs(20 * np.log10(fits[name].gain)) < 0.01 and fits[name].error < 1e-4
+    # the same analysis with a gain a designer chose: +14.2 dB and -4.3 dB
+    assert abs(20 * np.log10(fits["Alert1"].gain) - 14.17) < 0.01 and fits["Alert1"].error < 1e-4
+    assert abs(20 * np.log10(fits["Beep2"].gain) + 4.31) < 0.01 and fits["Beep2"].error < 1e-4
+    # drawn by hand: most of these designs' breakpoints fall between the sound's samples
+    assert fits["Button1"].hand_placed == 7 and fits["CameraShutter1"].hand_placed == 17
