@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 from timeline.devices import DeviceError, Dynamics
 
@@ -48,9 +49,10 @@ class KnobParams:
         if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
             raise DeviceError("the knob's rate, max torque and inertia must be positive")
 
-    @property
+    @cached_property
     def dynamics(self) -> Dynamics:
-        """The rotor and servo loop as the design checks see them."""
+        """The rotor and servo loop as the design checks see them (made once: flags use it per
+        block)."""
         tracking = self.observer_bandwidth if self.estimator == "tracking" else 0.0
         return Dynamics(
             self.inertia,

@@ -16,12 +16,12 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy.signal import lfilter
 
 from device.sim.loop import State, servo_loop
 from device.sim.observer import OFF, observer_tuple
 from device.sim.params import KnobParams
 from device.sim.plant import step_matrix, system_matrix
+from device.sim.readings import blow_up_index, readings
 from device.sim.stability import stability_flags
 from timeline.devices import (
     CoefficientBlock,
@@ -51,11 +51,23 @@ class KnobPhysics:
         self.omega = 0.0  # true speed (rad/s)
         self._maps: dict[tuple[float, ...], tuple[float, ...]] = {}
         self._tables: tuple[PositionTable | None, np.ndarray] = (None, NO_TABLES)
-        p = self.params
+        self.start(Hand("hold"))
+
+    @property
+    def params(self) -> KnobParams:
+        """The knob's constants; setting them (e.g. a lower torque limit) takes effect at once."""
+        return self._params
+
+    @params.setter
+    def params(self, p: KnobParams) -> None:
+        self._params = p
+        filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
+        self._firmware = _floats(
+            p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay, p.slew
+        )  # the loop's firmware tuple (loop.py), made once; index 5 is the velocity filter gain
         self._observer = (
             observer_tuple(p.period, p.observer_bandwidth) if p.estimator == "tracking" else OFF
         )
-        self.start(Hand("hold"))
 
     # --- set-up ---------------------------------------------------------------------------
 
@@ -89,7 +101,8 @@ class KnobPhysics:
         self.pending = 0.0  # the torque computed last period (applied now, with a delay)
         self.observed = (0.0, 0.0, 0.0)  # the observer's angle, (reserved), last motor torque
         self.idle = 0  # samples since the last block arrived
-        self.last: CoefficientBlock | PositionProgram | None = None
+        # what the watchdog keeps rendering: the last coefficients (rows d, k, b(, m)) or program
+        self.last: np.ndarray | PositionProgram | None = None
         self.failed: str | None = None
 
     # --- public stepping -----------------------------------------------------------------
@@ -100,25 +113,19 @@ class KnobPhysics:
         NaN or infinite coefficients are played as zero (no force), never silently: they are
         flagged ("non-finite", at each such sample) and named in a warning.
         """
-        refused = _nonfinite_flag(block, self.samples, self.params.period)
-        block = block.safe()
-        self.idle = 0
-        self.last = (
-            CoefficientBlock(
-                block.d[-1:], block.k[-1:], block.b[-1:], None if block.m is None else block.m[-1:]
-            )
-            if len(block)
-            else self.last
-        )
         rows = (
             (block.d, block.k, block.b) if block.m is None else (block.d, block.k, block.b, block.m)
         )
-        tel = self._run(len(block), coeffs=np.array(rows, dtype=np.float64))
-        layers = {"d": block.d, "k": block.k, "b": block.b}
-        if block.m is not None:
-            layers["m"] = block.m
+        coeffs = np.array(rows, dtype=np.float64)
+        finite, refused = np.isfinite(coeffs), None
+        if not finite.all():
+            refused = _nonfinite_flag(block, self.samples, self.params.period)
+            coeffs = np.where(finite, coeffs, 0.0)  # as block.safe()
+        self.idle = 0
+        self.last = coeffs[:, -1:] if len(block) else self.last
+        tel = self._run(len(block), coeffs=coeffs)
         n = len(tel)
-        layers = {name: values[:n] for name, values in layers.items()}
+        layers = dict(zip("dkbm", coeffs[:, :n], strict=False))
         flags = stability_flags(tel.time, layers["k"], layers["b"], layers.get("m"), self.params)
         if refused is not None:
             flags.append(refused)
@@ -148,10 +155,7 @@ class KnobPhysics:
         last = self.last
         if isinstance(last, PositionProgram):
             return self._run_table(last, n, gain)
-        if last is None:
-            last = CoefficientBlock.zeros(1)
-        rows = [a for a in (last.d, last.k, last.b, last.m) if a is not None]
-        coeffs = np.repeat(np.array(rows, dtype=np.float64), n, axis=1)
+        coeffs = np.repeat(np.zeros((3, 1)) if last is None else last, n, axis=1)
         tel = self._run(n, coeffs=coeffs, gain=gain)
         return _with(tel, {"d": coeffs[0] * gain[: len(tel)]}, [])
 
@@ -199,10 +203,6 @@ class KnobPhysics:
             tab, origin = table
             coeffs, tables, use_mass = NO_COEFFS, self._table_rows(tab), tab.mass is not None
             lookup = _floats(origin, tab.start, tab.rate)
-        filters = p.smoothing(p.velocity_cutoff), p.smoothing(p.acceleration_cutoff)
-        firmware = _floats(
-            p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay, p.slew
-        )
         motion = _floats(hand.push_torque, hand.push_ramp, hand.turn_speed, self.samples * p.period)
         state = _floats(self.theta, self.omega, self.grip_target, self.anchor, self.prev_meas,
                         self.vel, self.prev_vel, self.acc, self.pending,
@@ -214,7 +214,7 @@ class KnobPhysics:
             gain,
             use_mass,
             lookup,
-            firmware,
+            self._firmware,
             self._map,
             motion,
             state,
@@ -237,10 +237,7 @@ class KnobPhysics:
         """
         p = self.params
         theta, omega, grip_target, _, *estimators = state
-        path = np.append(thetas, theta)
-        speed = np.abs(np.diff(path)) * p.rate
-        bad = ~np.isfinite(path[1:]) | (speed > BLOW_UP_SPEED)
-        done = int(np.argmax(bad)) if bad.any() else thetas.size
+        done = blow_up_index(thetas, theta, p.rate, BLOW_UP_SPEED)
         flags: list[StabilityFlag] = []
         warnings: list[str] = []
         at = (self.samples + done) * p.period
@@ -251,19 +248,19 @@ class KnobPhysics:
             )
             flags.append(StabilityFlag("blow-up", self.failed, np.array([at]), np.array([0.0])))
             warnings.append(self.failed)
-            thetas, taus, path = thetas[:done], taus[:done], path[: done + 1]
-            frictions = frictions[:done]
-            theta, omega = float(path[-1]), 0.0
+            theta, omega = float(thetas[done]), 0.0
+            thetas, taus, frictions = thetas[:done], taus[:done], frictions[:done]
         if nonfinite:
             warnings.append(f"{nonfinite} non-finite torque samples were replaced by zero")
-        q = p.quantum
-        meas = (np.floor(thetas * (1.0 / q) + 0.5) * q if q else thetas) - self.anchor
-        av = p.smoothing(p.velocity_cutoff)
-        raw = np.diff(meas, prepend=self.prev_meas) * p.rate
-        velocity = lfilter([av], [1.0, av - 1.0], raw, zi=[(1.0 - av) * self.vel])[0]
-        step = np.diff(path)
-        dissipated = p.viscous * step * step * p.rate - frictions * step
-        energy = self.energy + np.cumsum(taus * step - dissipated)
+        meas, velocity, energy = readings(
+            thetas,
+            theta,
+            taus,
+            frictions,
+            _floats(p.quantum, self.anchor, p.rate),
+            _floats(self._firmware[5], self.prev_meas, self.vel),
+            _floats(p.viscous, self.energy),
+        )
         self.theta, self.omega, self.grip_target = theta, omega, grip_target
         self.prev_meas, self.vel, self.prev_vel, self.acc, self.pending, *observed = estimators
         self.observed = tuple(observed)

@@ -41,3 +41,25 @@ def test_devices_lists_the_simulated_knob(capsys) -> None:
     assert main(["devices"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert any(line.startswith("sim: simulated knob") for line in lines)
+
+
+def test_play_with_a_named_hand_settles_where_its_grip_says(tmp_path, capsys) -> None:
+    """18 mNm held by the grasp hand (0.054 N*m/rad) rests near 0.333 rad; the default grip
+    (1 N*m/rad) near 0.018 rad; Coulomb friction (1 mNm) leaves a band of 1 mNm / K around it."""
+    from timeline import edits, generator, save
+
+    p = edits.new_project("time")
+    p, drive = edits.add_track(p, "drive", "drive")
+    p, level = edits.add_tile(p, generator("constant", 3.0, "level", value=1.0))
+    p, _ = edits.add_clip(p, drive, level, 0.0, gain=0.1)  # 0.1 x 180 mNm
+    project = tmp_path / "step.htl"
+    save(p, project)
+    rest = {}
+    for hand in ("grasp", "hold"):
+        out = tmp_path / f"{hand}.csv"
+        assert main(["play", str(project), "--hand", hand, "-o", str(out)]) == 0
+        assert f"with hand {hand}" in capsys.readouterr().out
+        rows = list(csv.reader(out.open()))
+        rest[hand] = float(rows[-1][1])
+    assert abs(rest["grasp"] - 0.018 / 0.054) < 1e-3 / 0.054
+    assert abs(rest["hold"] - 0.018 / 1.0) < 1e-3 / 1.0

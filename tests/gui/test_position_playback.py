@@ -12,7 +12,7 @@ from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QMessageBox
 
 from timeline import playback
-from timeline.devices import HAND_MODES
+from timeline.devices import HAND_MODELS, HAND_MODES, Hand
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -45,6 +45,16 @@ def choose_hand(win, mode: str, value: str | None = None) -> None:
         QTest.keyClick(box, Qt.Key.Key_A, Qt.KeyboardModifier.ControlModifier)
         QTest.keyClicks(box, value)
         QTest.keyClick(box, Qt.Key.Key_Return)
+
+
+def choose_model(win, name: str) -> None:
+    """Pick whose hand with a click on its box and the arrow keys."""
+    combo = win.transport.hand_model
+    QTest.mouseClick(combo, Qt.MouseButton.LeftButton)
+    combo.hidePopup()
+    QTest.keyClick(combo, Qt.Key.Key_Home)
+    for _ in range(list(HAND_MODELS).index(name)):
+        QTest.keyClick(combo, Qt.Key.Key_Down)
 
 
 def record(win) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -122,3 +132,27 @@ def test_a_new_hand_in_a_time_project_carries_on_from_where_it_played(window, qt
     assert win.player.stream.start > 0.3  # restarted where it was, not from the cursor at 0
     QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)
     assert not win.player.playing
+
+
+def test_a_measured_hand_chosen_in_the_box_holds_the_knob_with_its_grip(fan_knob, qtbot):
+    """Whose hand is its own box: its grip (grasp 0.054, pinch 0.129 N*m/rad) goes with any
+    mode, the tooltip names the source, and the played telemetry comes from that hand."""
+    win = fan_knob
+    choose_model(win, "grasp")
+    assert win.player.hand == Hand("hold", model="grasp") and str(win.player.hand) == "grasp"
+    tip = win.transport.hand_model.itemData(2, Qt.ItemDataRole.ToolTipRole)
+    assert "van Beek" in tip and "Fig. 3f" in tip
+    choose_hand(win, "turn", "45")
+    assert str(win.player.hand) == "grasp-turn:45"
+    assert win.player.hand.grip_stiffness == pytest.approx(0.054)
+    choose_model(win, "pinch")
+    assert str(win.player.hand) == "pinch-turn:45"
+    assert win.player.hand.grip_stiffness == pytest.approx(0.129375)
+    parts = record(win)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    qtbot.waitUntil(lambda: sum(a.size for a, _ in parts) > 2000, timeout=15_000)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    angle = np.degrees(np.concatenate([a for a, _ in parts]))
+    assert angle[0] == pytest.approx(50.0, abs=0.5) and angle[-1] > angle[0]  # turning from Off
+    choose_model(win, "default")
+    assert str(win.player.hand) == "turn:45" and win.player.hand.grip_stiffness == 1.0

@@ -31,7 +31,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="an option for the device plugin, e.g. emulate=true or vid=0x1209 (repeatable)",
     )
     p.add_argument(
-        "--hand", default="hold", help="hold (default), free, turn:DEG_PER_S or push:MNM"
+        "--hand",
+        default="hold",
+        help=(
+            "hold (default), free, turn:DEG_PER_S or push:MNM; a measured hand by name (pinch,"
+            " grasp) or before a mode with a dash (pinch-turn:90); see docs/devices.md"
+        ),
     )
     p.add_argument("--duration", type=float, help="seconds to play (default: the project's)")
     p.add_argument(

@@ -19,6 +19,7 @@ _EXPORTS = {
     **dict.fromkeys(("ACTUATOR_TYPES", "Actuator", "Dynamics"), "dynamics"),
     **dict.fromkeys(("DeviceError", "HandSpecError"), "errors"),
     **dict.fromkeys(("DEFAULT_PUSH_MNM", "DEFAULT_TURN_DEG_PER_S", "HAND_MODES", "Hand"), "hand"),
+    **dict.fromkeys(("HAND_MODELS", "HandModel"), "hand_models"),
     **dict.fromkeys(("KINDS", "DeviceInfo"), "info"),
     **dict.fromkeys(("CoefficientBlock", "PositionProgram", "PositionTable", "Program"), "program"),
     **dict.fromkeys(
@@ -48,6 +49,7 @@ __all__ = [
     "ACTUATOR_TYPES",
     "DEFAULT_PUSH_MNM",
     "DEFAULT_TURN_DEG_PER_S",
+    "HAND_MODELS",
     "HAND_MODES",
     "KINDS",
     "TELEMETRY_COLUMNS",
@@ -58,6 +60,7 @@ __all__ = [
     "DeviceInfo",
     "Dynamics",
     "Hand",
+    "HandModel",
     "HandSpecError",
     "LiveTelemetry",
     "Monitor",

@@ -14,7 +14,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from timeline.devices import HAND_MODES, Hand
+from timeline.devices import HAND_MODELS, HAND_MODES, Hand
 from timeline.devices.hand import DEFAULT_PUSH_MNM, DEFAULT_TURN_DEG_PER_S
 
 from .geometry import axis_text
@@ -55,6 +55,13 @@ class Transport(QWidget):
         self.hand_value = QDoubleSpinBox()
         self.hand_value.setDecimals(1)
         self.hand_value.setKeyboardTracking(False)
+        self.hand_model = QComboBox()
+        self.hand_model.addItems(list(HAND_MODELS))
+        self.hand_model.setToolTip("Whose hand: its grip stiffness, damping and inertia")
+        for i, model in enumerate(HAND_MODELS.values()):
+            tip = f"{model.name}: {model.source}"
+            self.hand_model.setItemData(i, tip, Qt.ItemDataRole.ToolTipRole)
+        self.hand_model.currentTextChanged.connect(lambda _: self._set_hand())
         self.hand.currentTextChanged.connect(self._mode_chosen)
         self.hand_value.valueChanged.connect(lambda _: self._set_hand())
         self._mode_chosen(self.hand.currentText())
@@ -70,6 +77,7 @@ class Transport(QWidget):
         row.addWidget(QLabel("device"))
         row.addWidget(self.device)
         row.addWidget(QLabel("hand"))
+        row.addWidget(self.hand_model)
         row.addWidget(self.hand)
         row.addWidget(self.hand_value)
         row.addWidget(QLabel("playhead"))
@@ -101,7 +109,7 @@ class Transport(QWidget):
     def _set_hand(self) -> None:
         mode = self.hand.currentText()
         value = self.hand_value.value() if mode in ("turn", "push") else 0.0
-        self.player.hand = Hand(mode, value)
+        self.player.hand = Hand(mode, value, model=self.hand_model.currentText())
         self.hand_changed.emit(self.player.hand)
 
     def show_playing(self, playing: bool) -> None:
