@@ -46,4 +46,4 @@ def test_list_names_every_benchmark(capsys) -> None:
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
                      "estimator", "accumulation", "edit-to-feel", "scale", "convert",
-                     "formats"]  # fmt: skip
+                     "formats", "waves"]  # fmt: skip
