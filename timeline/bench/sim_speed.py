@@ -21,7 +21,7 @@ from timeline.devices import CoefficientBlock, Hand
 NAME = "sim-speed"
 SUMMARY = "simulated knob speed as a multiple of real time (10 s icon at 10 kHz)"
 RATE = 10_000.0
-TARGET = 100.0  # x real time
+TARGET = 300.0  # x real time (docs/performance.md)
 FIRST_BLOCK = """
 import time
 import numpy as np
