@@ -16,6 +16,7 @@ from typing import Any
 from immutables import Map
 
 from timeline.errors import EditError
+from timeline.id_sequence import IdSequence
 from timeline.markers import LoopRegion, Marker
 from timeline.tiles import Tile
 
@@ -176,7 +177,10 @@ class PaletteTab:
 
     name: str
     role: str  # "templates", "scratch" or "user"
-    tile_ids: tuple[str, ...] = ()
+    tile_ids: IdSequence = IdSequence()  # any iterable of ids is kept as an IdSequence
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "tile_ids", IdSequence.of(self.tile_ids))
 
 
 @dataclass(frozen=True)
