@@ -134,3 +134,28 @@ def test_a_design_too_short_to_render_says_so_once_and_keeps_its_findings(window
     win.findings.schedule()
     qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
     assert len(win.messages.history) == shown and win.findings.report.findings == ()
+
+
+def test_an_lra_on_the_knob_is_a_second_curve_showing_what_it_cannot_play(qapp) -> None:
+    from dataclasses import replace
+
+    from tests.gui.conftest import two_track_project
+    from timeline.devices import Hand, open_device
+    from timeline.gui.geometry import Geometry
+    from timeline.gui.rendered_overlay import curves as draw
+    from timeline.limits.actuators import actuator
+    from timeline.limits.plot import traces
+
+    project, _ids = two_track_project()
+    with open_device("sim") as sim:
+        info = replace(sim.info, actuator=actuator("lra-175"))
+    lra, knob = traces(project, info, info.actuator, Hand("hold"), "normal")
+    assert lra.designed.max() == pytest.approx(MAX) and knob.rendered.max() == pytest.approx(MAX)
+    assert lra.rendered.max() < 0.01 * MAX  # a 5 Hz sine and a 2 Hz ramp, far below 175 Hz
+    items = draw(project, [lra, knob], Geometry(200.0))
+    assert [(c.lane, c.trace.label) for c in items] == [
+        (0, "drive on lra-175"), (1, "drive on lra-175"),
+        (0, "torque on sim, hand hold"), (1, "torque on sim, hand hold"),
+    ]  # fmt: skip
+    assert items[0].pen().color() != items[2].pen().color()
+    assert items[0].highs.max() < 0.01 * MAX and items[2].highs.max() == pytest.approx(MAX)
