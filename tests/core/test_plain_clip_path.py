@@ -114,3 +114,41 @@ def test_loading_restores_the_garbage_collector_even_on_a_refusal(enabled: bool)
         assert gc.isenabled() is enabled
     finally:
         (gc.enable if was else gc.disable)()
+
+
+finite = st.floats(allow_nan=False, allow_infinity=False, min_value=-1e300, max_value=1e300)
+
+
+@given(
+    st.text(max_size=6),
+    st.text(max_size=6),
+    finite,
+    st.floats(min_value=-1e6, max_value=1e6),
+    st.floats(min_value=1e-3, max_value=1e6),
+    st.floats(min_value=1e-6, max_value=1e3),
+    st.sampled_from(["squeeze", "repeat"]),
+    st.lists(finite, min_size=5, max_size=5),
+    st.booleans(),
+    st.floats(min_value=0.0, max_value=1e3),
+    st.sampled_from(["linear", "equal-power", "exponential", "s-curve"]),
+)
+def test_a_clip_line_is_the_json_encoders_text_for_the_clip(
+    clip_id, tile_id, start, source_in, length, stretch, mode, rest, reverse, fade, shape
+):
+    clip = Clip(
+        clip_id, tile_id, start, source_in, source_in + length, stretch, mode, *rest,
+        reverse=reverse, fade_in=Fade(fade, shape), fade_out=Fade(),
+    )  # fmt: skip
+    assert projectfile._clip_line(clip) == projectfile._COMPACT.encode(
+        projectfile._clip_to_json(clip)
+    )
+
+
+def test_saving_through_clip_lines_gives_the_bytes_of_the_dict_encoder():
+    from timeline.bench.scenes import LargeSpec, large_project
+    from timeline.edits import save_variant
+
+    project = save_variant(large_project(LargeSpec(4, 300, 20.0, 12)), "A")
+    plain = projectfile._text(projectfile.to_json(project), projectfile._COMPACT.encode) + "\n"
+    assert projectfile.dumps(project) == plain
+    assert projectfile.loads(plain) == project and project.variants[0].tracks[0].clips
