@@ -16,6 +16,7 @@ from typing import Any
 from immutables import Map
 
 from timeline.errors import EditError
+from timeline.id_sequence import IdSequence
 from timeline.markers import LoopRegion, Marker
 from timeline.tiles import Tile
 
@@ -89,6 +90,19 @@ class Clip:
             value = getattr(self, name)
             if type(value) is not float or not math.isfinite(value):  # the message only if bad
                 object.__setattr__(self, name, _finite(f"a clip's {name.replace('_', ' ')}", value))
+        self._check_ranges()
+
+    @classmethod
+    def from_checked(cls, values: dict[str, Any]) -> Clip:
+        """A clip from a dict of all its fields whose numbers are already finite floats and whose
+        fades are Fades (a file reader's fast path): only the rules between fields are checked,
+        with the same EditError as the constructor."""
+        clip = object.__new__(cls)
+        clip.__dict__.update(values)
+        clip._check_ranges()
+        return clip
+
+    def _check_ranges(self) -> None:
         if self.source_out <= self.source_in:
             raise EditError("a clip must play a source range of positive length")
         if self.stretch <= 0:
@@ -176,7 +190,10 @@ class PaletteTab:
 
     name: str
     role: str  # "templates", "scratch" or "user"
-    tile_ids: tuple[str, ...] = ()
+    tile_ids: IdSequence = IdSequence()  # any iterable of ids is kept as an IdSequence
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "tile_ids", IdSequence.of(self.tile_ids))
 
 
 @dataclass(frozen=True)

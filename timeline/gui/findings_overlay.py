@@ -3,22 +3,30 @@
 After each edit (debounced) the project is checked in a worker thread against the player's
 device (timeline.limits.check); the result shades the spans on the lanes whose layer it is
 about (device limits orange, perception purple; hover for the sentence) and puts one line in
-the message bar when the findings change.
+the message bar when the findings change. While View > Show rendered by device is on, the same
+worker also computes what the device will output (rendered_overlay) and the lanes show it.
 """
 
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QObject, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QBrush, QColor, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsRectItem
 
-from timeline.devices import DeviceInfo, open_device
+from timeline.devices import DeviceInfo, Hand, open_device
 from timeline.errors import HapticTimelineError
 from timeline.kinds import track_kind
 from timeline.limits.check import Report, check
 from timeline.model import Project
+
+from .rendered_overlay import RenderedLayer
+
+if TYPE_CHECKING:  # scipy loads with the first rendering, not at start-up
+    from timeline.limits.rendered import Trace
 
 DELAY_MS = 250  # after the last edit
 MAX_LIVE_SAMPLES = 6_000_000  # 10 minutes at 10 kHz: longer designs are checked by the CLI
@@ -26,6 +34,15 @@ COLOURS = {"device": QColor(230, 126, 34, 60), "perception": QColor(142, 68, 173
 EDGES = {"device": QColor(211, 84, 0), "perception": QColor(110, 44, 140)}
 LAYER_OF = {"amplitude": "d", "frequency": "d"}  # a sub-JND measure's layer
 SHADE_Z = 15  # above clips, below the playhead and cursor
+
+
+@dataclass(frozen=True)
+class Checked:
+    """What the worker found: the report and, when asked for, the rendered traces."""
+
+    report: Report
+    traces: tuple[Trace, ...] = ()
+    unrendered: str = ""  # why the traces could not be computed, when they were asked for
 
 
 class FindingShade(QGraphicsRectItem):
@@ -64,7 +81,7 @@ def summary(report: Report) -> str:
 class FindingsOverlay(QObject):
     """Checks the document after edits and shows the findings on the timeline view."""
 
-    ready = Signal(object, int)  # Report or HapticTimelineError, version
+    ready = Signal(object, int)  # Checked or HapticTimelineError, version
 
     def __init__(self, doc, view, messages, player) -> None:  # noqa: ANN001 - GUI objects
         super().__init__(view)
@@ -73,6 +90,9 @@ class FindingsOverlay(QObject):
         self.version = 0
         self._done = -1  # the version the shown report belongs to
         self.shades: list[FindingShade] = []
+        self.traces: tuple[Trace, ...] = ()
+        self.rendered = RenderedLayer(view.scene())
+        self._unrendered = ""  # the last rendering error said
         self._infos: dict[str, DeviceInfo] = {}
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="findings")
         self._timer = QTimer(self)
@@ -92,6 +112,20 @@ class FindingsOverlay(QObject):
         """Check again once edits pause."""
         self.version += 1
         self._timer.start(DELAY_MS)
+
+    def show_rendered(self, on: bool) -> None:
+        """Draw the device's output over the lanes (computed after the next check) or stop."""
+        if on:
+            self._unrendered = ""
+            self.schedule()
+        else:
+            self.traces = ()
+            self.rendered.clear()
+
+    def hand_changed(self) -> None:
+        """The transport's hand changed: a knob's rendering depends on it."""
+        if self.rendered.shown:
+            self.schedule()
 
     def device_info(self) -> DeviceInfo:
         """What the player's device declares (asked once per device)."""
@@ -113,10 +147,11 @@ class FindingsOverlay(QObject):
                 f"the design is too long to check while editing ({project.duration:.0f} s); "
                 "run haptic-timeline check on it"), version)  # fmt: skip
             return
-        future = self._pool.submit(_check, project, info)
+        hand = self.player.hand if self.rendered.shown else None
+        future = self._pool.submit(_check, project, info, hand)
         future.add_done_callback(lambda f: self.ready.emit(f.result(), version))
 
-    def _show(self, result: Report | HapticTimelineError, version: int) -> None:
+    def _show(self, result: Checked | HapticTimelineError, version: int) -> None:
         if version != self.version:
             return  # an edit came since: its own check follows
         self._done = version
@@ -124,14 +159,18 @@ class FindingsOverlay(QObject):
             text = f"Cannot check the design: {result}"
             if self.report is None or self.report.notes != (text,):
                 self.messages.show_message(text, "error")
-            self.report = Report((), (text,))
+            self.report, self.traces = Report((), (text,)), ()
             self._draw(self.doc.project, self.report)
             return
-        changed = self.report is None or _keys(self.report) != _keys(result)
-        self.report = result
-        self._draw(self.doc.project, result)
+        report = result.report
+        changed = self.report is None or _keys(self.report) != _keys(report)
+        self.report, self.traces = report, result.traces
+        self._draw(self.doc.project, report)
         if changed:
-            self.messages.show_message(summary(result), "finding" if result.findings else "info")
+            self.messages.show_message(summary(report), "finding" if report.findings else "info")
+        if result.unrendered and result.unrendered != self._unrendered:
+            self.messages.show_message(result.unrendered, "error")
+        self._unrendered = result.unrendered
 
     def _redraw(self) -> None:
         if self.report is not None:
@@ -154,6 +193,7 @@ class FindingsOverlay(QObject):
                 shade = FindingShade(rect, finding.area, finding.kind, finding.describe())
                 scene.addItem(shade)
                 self.shades.append(shade)
+        self.rendered.draw(project, list(self.traces), geometry)
 
     def close(self) -> None:
         """Stop checking (the window is closing)."""
@@ -161,11 +201,20 @@ class FindingsOverlay(QObject):
         self._pool.shutdown(wait=False, cancel_futures=True)
 
 
-def _check(project: Project, info: DeviceInfo) -> Report | HapticTimelineError:
+def _check(project: Project, info: DeviceInfo, hand: Hand | None) -> Checked | HapticTimelineError:
+    """The findings and, given the hand to render a knob with, what the device will output."""
     try:
-        return check(project, info)
+        report = check(project, info)
     except HapticTimelineError as exc:
         return exc
+    if hand is None or project.axis != "time":
+        return Checked(report)
+    from timeline.limits.plot import traces
+
+    try:
+        return Checked(report, tuple(traces(project, info, info.actuator, hand, "normal")))
+    except HapticTimelineError as exc:  # e.g. too short to render: the findings still stand
+        return Checked(report, unrendered=f"Cannot show the rendered output: {exc}")
 
 
 def _keys(report: Report) -> list[tuple[str, float, float]]:

@@ -67,6 +67,11 @@ class MainWindow(QMainWindow):
         self._build()
         self.autosaver = Autosaver(self.doc)
         self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
+        self.rendered_action = self.findings.rendered.add_action(
+            self.view_menu, self.findings.show_rendered
+        )
+        self.transport.device.currentTextChanged.connect(lambda _: self.findings.schedule())
+        self.transport.hand_changed.connect(lambda _: self.findings.hand_changed())
         self.doc.changed.connect(self._changed)
         self.doc.message.connect(self.messages.show_message)
         self.doc.modified_changed.connect(lambda _: self._update_title())
@@ -208,6 +213,7 @@ class MainWindow(QMainWindow):
         self.snap_action = self._action(view, "&Snap to edges and grid", self.toggle_snap, "G")
         self.snap_action.setCheckable(True)
         self.snap_action.setChecked(True)
+        self.view_menu = view
 
         play = bar.addMenu("&Transport")
         self._action(play, "&Play / stop", self.play_stop, "Space")
