@@ -14,13 +14,20 @@ from timeline.model import Project
 
 HERE = Path(__file__).resolve().parent
 deg = math.radians
+# The walls' torque gain and damping: 0.8 x 180 mNm over 20 degrees is 0.413 N*m/rad, with 3e-5
+# N*m*s/rad of damping, below the 0.467 N*m/rad a knob with a one-period computation delay renders
+# passively at 10 kHz ((b_dev - B) / (1.5 T), docs/perception.md) and twice the detents' steepest
+# slope (0.216 N*m/rad).
+WALL = 0.8
+WALL_DAMPING = 0.3
 
 
 def fan_knob() -> Project:
     """The paper's fan knob (position axis): walls beyond Off and Hi, four detents between.
 
     Detent rest angles: Off 50, Lo 110, Med 170, Hi 230 degrees; walls below 20 and above 260.
-    Light damping in range, stronger beyond the ends, constant mass.
+    Light damping in range, stronger beyond the ends, constant mass. The walls and the damping
+    stay inside the delayed passivity bound (see WALL), so `check` is quiet on a USB knob too.
     """
     p = edits.new_project("position", title="Fan knob", description=fan_knob.__doc__.split("\n")[0])
     p, torque = edits.add_track(p, "torque", "Walls and detents")
@@ -32,15 +39,15 @@ def fan_knob() -> Project:
     )
     p, level = edits.add_tile(p, generator("constant", deg(20), "level", value=1.0), "Scratch")
     # Lower wall: reversed and inverted so it pushes towards higher angles below 20 degrees.
-    p, low = edits.add_clip(p, torque, wall, 0.0)
+    p, low = edits.add_clip(p, torque, wall, 0.0, gain=WALL)
     p = edits.reverse_clip(p, low)
     p = edits.invert_clip(p, low)
     p, _ = edits.add_clip(p, torque, detents, deg(20), gain=0.2)
-    p, _ = edits.add_clip(p, torque, wall, deg(260))
-    p, _ = edits.add_clip(p, damping, level, 0.0, gain=0.5)
+    p, _ = edits.add_clip(p, torque, wall, deg(260), gain=WALL)
+    p, _ = edits.add_clip(p, damping, level, 0.0, gain=WALL_DAMPING)
     p, mid = edits.add_clip(p, damping, level, deg(20), gain=0.2)
     p = edits.stretch_clip(p, mid, 12.0, "repeat")
-    p, _ = edits.add_clip(p, damping, level, deg(260), gain=0.5)
+    p, _ = edits.add_clip(p, damping, level, deg(260), gain=WALL_DAMPING)
     p, whole = edits.add_clip(p, mass, level, 0.0, gain=0.2)
     p = edits.stretch_clip(p, whole, 14.0, "repeat")
     for name, at in (("Off", 50), ("Lo", 110), ("Med", 170), ("Hi", 230)):
@@ -76,8 +83,8 @@ def rising_resistance() -> Project:
     p, swell = edits.add_tile(
         p, spline([(0.0, 0.0), (1.0, 0.3), (2.0, 1.0)], 2.0, "pchip", "swell"), "Scratch"
     )
-    p, _ = edits.add_clip(p, stiffness, ramp, 0.0, gain=0.8)
-    p, _ = edits.add_clip(p, damping, swell, 0.0, gain=0.5)
+    p, _ = edits.add_clip(p, stiffness, ramp, 0.0, gain=0.4)  # 0.4 N*m/rad at 2 s
+    p, _ = edits.add_clip(p, damping, swell, 0.0, gain=0.3)  # 3e-5 N*m*s/rad at 2 s
     return p
 
 

@@ -105,7 +105,7 @@ class UsbKnob(Device):
                 _shown(w.max_torque),
                 _shown(w.encoder_resolution),
                 ".".join(str(x) for x in w.firmware),
-                Dynamics(w.inertia, w.viscous) if w.inertia > 0 else None,
+                Dynamics(w.inertia, w.viscous, w.delay) if w.inertia > 0 else None,
             )
         return self._info
 

@@ -25,8 +25,10 @@ class EmulatedKnob:
     """A haptic device's firmware: control requests, block queue, safety and telemetry reports.
 
     `params` is the sim knob it drives (its max torque is the maximum GET_INFO declares; its
-    watchdog ramp is the protocol's ramp). A vibrotactile device renders the drive term only, at
-    +-1.0 of full scale, and reports zero angle and velocity.
+    watchdog ramp is the protocol's ramp). By default a knob has a one-period computation delay,
+    as real firmware does (it computes on one sample and applies on the next), and declares it
+    in GET_INFO. A vibrotactile device renders the drive term only, at +-1.0 of full scale, with
+    no delay (it plays its samples open loop), and reports zero angle and velocity.
     """
 
     def __init__(
@@ -40,7 +42,11 @@ class EmulatedKnob:
         watchdog_ms: int = 50,
         limits: tuple[float, float, float] = (100.0, 1.0, 1e-2),
     ) -> None:
-        params = params or KnobParams(max_torque=1.0 if vibrotactile else 0.18)
+        # A knob's firmware applies the torque it computed from one reading a period later; a
+        # vibrotactile driver plays its samples open loop, with nothing to compute.
+        params = params or KnobParams(
+            max_torque=1.0 if vibrotactile else 0.18, delay=int(not vibrotactile)
+        )
         self.info = p.InfoPayload(
             kind=p.KIND_VIBROTACTILE if vibrotactile else p.KIND_KINESTHETIC,
             rate_hz=round(params.rate),
@@ -58,6 +64,7 @@ class EmulatedKnob:
             inertia=0.0 if vibrotactile else params.inertia,
             viscous=0.0 if vibrotactile else params.viscous,
             coulomb=0.0 if vibrotactile else params.coulomb,
+            delay=params.delay,
             firmware=FIRMWARE_VERSION,
         )
         # The sim's own watchdog starts at once: this firmware calls run_idle only to ramp down.
@@ -248,7 +255,9 @@ class EmulatedKnob:
     def _begin_ramp(self) -> None:
         """Scale the torque law down to zero over the ramp time (the sim's run_idle)."""
         self.state = p.STATE_RAMPING
-        self._ramp_left = max(1, math.ceil(self.info.ramp_ms * self.info.rate_hz / 1000)) + 1
+        # + 1 for the sample where the ramp reaches zero, + delay for that zero to be applied
+        ramp = max(1, math.ceil(self.info.ramp_ms * self.info.rate_hz / 1000))
+        self._ramp_left = ramp + 1 + self.info.delay
 
     def _record(self, tel: Telemetry) -> int:
         n = len(tel)

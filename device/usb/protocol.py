@@ -88,6 +88,7 @@ REPORT_HEADER_SIZE = _REPORT_HEADER.size
 INFO_SIZE = _INFO.size
 LIMITS_SIZE = _LIMITS.size
 WATCHDOG_RANGE_MS = (5, 1000)
+MAX_DELAY = 1  # servo periods of computation delay GET_INFO may declare (the host models 0, 1)
 
 
 class ProtocolError(HapticTimelineError):
@@ -129,6 +130,7 @@ class InfoPayload:
     inertia: float = 0.0  # kg*m^2 of the rotor and knob (0 when unknown)
     viscous: float = 0.0  # N*m*s/rad of the device's own damping
     coulomb: float = 0.0  # N*m of the device's own Coulomb friction
+    delay: int = 0  # servo periods between reading the encoder and applying the torque from it
     firmware: tuple[int, int, int] = (1, 0, 0)
     protocol_version: int = PROTOCOL_VERSION
 
@@ -158,7 +160,7 @@ def encode_info(info: InfoPayload) -> bytes:
         info.max_block,
         info.report_samples,
         info.channels,
-        0,
+        info.delay,
         info.watchdog_ms,
         info.ramp_ms,
         info.inertia,
@@ -173,7 +175,7 @@ def decode_info(data: bytes) -> InfoPayload:
     if len(data) != INFO_SIZE:
         raise ProtocolError(f"device info is {len(data)} bytes, expected {INFO_SIZE}")
     magic, version, kind, major, minor, patch, rate, *rest = _INFO.unpack(data)
-    tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, _, watchdog, ramp = rest[:12]
+    tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, delay, watchdog, ramp = rest[:12]
     inertia, viscous, coulomb = rest[12:]
     if magic != _INFO_MAGIC:
         raise ProtocolError("device info does not start with the protocol's magic bytes")
@@ -190,9 +192,11 @@ def decode_info(data: bytes) -> InfoPayload:
         raise ProtocolError(f"device info has an invalid channel mask {channels:#x}")
     if max_block <= 0 or report <= 0 or cap < max_block:
         raise ProtocolError("device info has an invalid block, report or buffer size")
+    if delay > MAX_DELAY:
+        raise ProtocolError(f"device info declares a {delay}-period delay, at most {MAX_DELAY}")
     return InfoPayload(
         kind, rate, tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, watchdog, ramp,
-        inertia, viscous, coulomb, (major, minor, patch), version,
+        inertia, viscous, coulomb, delay, (major, minor, patch), version,
     )  # fmt: skip
 
 

@@ -224,7 +224,8 @@ class Stream:
             return ()
         params = KnobParams(rate=self.rate, quantum=info.encoder_resolution,
                             max_torque=float(self.limits[0]), inertia=info.inertia,
-                            viscous=info.viscous, coulomb=info.coulomb)  # fmt: skip
+                            viscous=info.viscous, coulomb=info.coulomb,
+                            delay=info.delay)  # fmt: skip
         return tuple(stability_flags(time, layers["k"], layers["b"], layers.get("m"), params))
 
     def warnings(self) -> list[str]:

@@ -27,8 +27,9 @@ def test_fan_knob_torque_has_walls_and_four_detents():
     layers = render(p, 0.0, np.radians(280), rate)
     torque = layers["torque"]
     deg = np.arange(len(torque)) / 100
-    assert torque[deg == 0][0] == pytest.approx(0.18)  # lower wall pushes up at full torque
-    assert torque[np.isclose(deg, 279.99)][0] == pytest.approx(-0.18, rel=1e-3)
+    # the walls push at 0.8 of full torque at their ends (below the delayed passivity bound)
+    assert torque[deg == 0][0] == pytest.approx(0.144)  # lower wall pushes up
+    assert torque[np.isclose(deg, 279.99)][0] == pytest.approx(-0.144, rel=1e-3)
     inside = (deg > 21) & (deg < 259)
     falling = np.flatnonzero((torque[:-1] > 0) & (torque[1:] <= 0) & inside[:-1])
     np.testing.assert_allclose(deg[falling], [50, 110, 170, 230], atol=0.02)

@@ -14,6 +14,10 @@ from timeline.devices import Hand
 from timeline.playback import coefficient_blocks, position_program, rest_angles
 from timeline.tiles import generator
 
+# The walls reach 0.8 x 180 mNm over their 20 degrees: the example keeps them below the
+# delayed passivity bound (projects/build_examples.py).
+WALL_TORQUE = 0.8 * 0.18
+
 FAN = Path(__file__).resolve().parents[2] / "projects" / "fan_knob.htl"
 REST_DEG = [50.0, 110.0, 170.0, 230.0]  # the example's Off, Lo, Med, Hi
 
@@ -67,13 +71,14 @@ def test_turning_through_the_range_feels_four_detents_and_the_wall(fan) -> None:
 
 
 @pytest.mark.parametrize(
-    "push_mnm, expected_deg", [(100.0, 260 + 20 * 0.1 / 0.18), (-100.0, 20 - 20 * 0.1 / 0.18)]
+    "push_mnm, expected_deg",
+    [(100.0, 260 + 20 * 0.1 / WALL_TORQUE), (-100.0, 20 - 20 * 0.1 / WALL_TORQUE)],
 )
 def test_walls_stop_a_pushing_hand_where_torques_balance(
     fan, push_mnm: float, expected_deg: float
 ) -> None:
     hand = Hand("push", push_mnm)
-    program, _ = position_program(fan, 1.5, hand=hand)
+    program, _ = position_program(fan, 3.0, hand=hand)  # 3 s: the walls' light damping rings
     tel = SimKnob().play(program, hand)
     final = math.degrees(program.origin + tel.angle[-1])
     assert final == pytest.approx(expected_deg, abs=1.0)

@@ -131,19 +131,25 @@ def test_invalid_control_requests_stall_endpoint_zero(request_, value, data) -> 
 
 
 def test_set_limits_lowers_the_torque_the_device_applies() -> None:
-    """A constant drive of 0.1 N*m is applied as 0.04 after SET_LIMITS(0.04)."""
+    """A constant drive of 0.1 N*m is applied as 0.04 after SET_LIMITS(0.04).
+
+    The firmware applies each torque one period after it computes it: the first sample is 0.
+    """
     emulated = EmulatedDevice()
     dev = configured(emulated)
     vendor_out(dev, p.REQ_SET_LIMITS, data=p.encode_limits(0.04, 50))
     vendor_out(dev, p.REQ_START, p.CH_D)
     dev.write(p.EP_OUT, p.encode_block(p.Block(0, p.CH_D, np.full((100, 1), 0.1), True)))
     report = p.decode_report(dev.read(p.EP_IN, p.report_bytes(100)))
-    assert report.samples[:, 2].tolist() == [np.float32(0.04)] * 100
+    assert report.samples[:, 2].tolist() == [0.0] + [np.float32(0.04)] * 99
     assert report.flags == p.FLAG_SATURATED
 
 
 def test_the_device_renders_a_non_finite_coefficient_as_zero_torque() -> None:
-    """Defence in depth: a host that sends NaN gets zero torque for that sample and a flag."""
+    """Defence in depth: a host that sends NaN gets zero torque for that sample and a flag.
+
+    The firmware applies a torque one period after computing it: sample 40's zero lands at 41.
+    """
     emulated = EmulatedDevice()
     dev = configured(emulated)
     vendor_out(dev, p.REQ_START, p.CH_D)
@@ -152,7 +158,7 @@ def test_the_device_renders_a_non_finite_coefficient_as_zero_torque() -> None:
     dev.write(p.EP_OUT, p.encode_block(p.Block(0, p.CH_D, d, True)))
     report = p.decode_report(dev.read(p.EP_IN, p.report_bytes(100)))
     torque = report.samples[:, 2]
-    assert torque[40] == 0.0 and torque[39] == np.float32(0.02) and np.isfinite(torque).all()
+    assert torque[41] == 0.0 and torque[40] == np.float32(0.02) and np.isfinite(torque).all()
     assert report.flags & p.FLAG_NON_FINITE
 
 

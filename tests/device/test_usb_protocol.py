@@ -38,11 +38,13 @@ def test_a_report_has_the_documented_byte_layout() -> None:
 
 def test_device_info_round_trips_in_58_bytes() -> None:
     info = p.InfoPayload(p.KIND_KINESTHETIC, 10_000, 0.25, 50.0, 0.5, 1e-3, 1e-5, 4096, 512,
-                         100, p.ALL_CHANNELS, 50, 10, 1e-5, 1e-4, 1e-3, (2, 3, 4))  # fmt: skip
+                         100, p.ALL_CHANNELS, 50, 10, 1e-5, 1e-4, 1e-3, 1, (2, 3, 4))  # fmt: skip
     wire = p.encode_info(info)
     assert len(wire) == p.INFO_SIZE == 58
+    assert wire[41] == 1  # the delay sits in the byte version 2 first shipped as reserved 0
     back = p.decode_info(wire)
     assert back.rate_hz == 10_000 and back.firmware == (2, 3, 4) and back.report_samples == 100
+    assert back.delay == 1
     assert back.max_torque == np.float32(0.25) and back.max_mass == np.float32(1e-3)
     assert (back.inertia, back.viscous, back.coulomb) == tuple(np.float32([1e-5, 1e-4, 1e-3]))
 
@@ -51,7 +53,8 @@ def test_device_info_round_trips_in_58_bytes() -> None:
     "field, value, words",
     [(1, 3, "protocol version 3"), (6, 0, "non-positive"), (7, float("nan"), "non-finite"),
      (15, 0, "invalid channel mask"), (14, 0, "block, report or buffer"),
-     (12, 100, "block, report or buffer"), (20, -1e-4, "non-finite rate or limit")],
+     (12, 100, "block, report or buffer"), (20, -1e-4, "non-finite rate or limit"),
+     (16, 2, "2-period delay")],
 )  # fmt: skip
 def test_device_info_with_a_bad_field_is_refused(field: int, value: float, words: str) -> None:
     info = p.InfoPayload(p.KIND_KINESTHETIC, 10_000, 0.18, 50.0, 0.5, 1e-3, 1e-5, 4096, 512,

@@ -93,7 +93,7 @@ def test_a_project_streamed_over_usb_reports_the_sim_telemetry() -> None:
     knob, emulated = rig()
     blocks = float32_blocks(prepare(project, knob.info, hand=hand).program)
     usb = knob.play(blocks, hand)
-    sim = SimKnob().play(blocks, hand)
+    sim = SimKnob(delay=1).play(blocks, hand)
     assert len(usb) == 20_000 and usb.time_saturated > 0.5  # the clamp was exercised
     assert_same_as_sim(usb, sim)
     sent = wire(emulated)
@@ -111,7 +111,7 @@ def test_the_device_ends_a_finished_stream_at_zero_torque() -> None:
     tel = knob.play(blocks_of(2000, d=0.05, k=0.5), Hand("hold"))
     assert tel.torque[-1] == pytest.approx(0.05 / 1.5, rel=0.01)  # d - k*d/(k + grip)
     assert emulated.knob.state == p.STATE_RAMPING  # STOP sent: ramping over 10 ms
-    emulated.knob.advance(0.0101)
+    emulated.knob.advance(0.0102)  # the 10 ms ramp, its zero sample, one period of delay
     assert (emulated.knob.state, emulated.knob.torque) == (p.STATE_IDLE, 0.0)
 
 
@@ -121,7 +121,7 @@ def test_a_mass_layer_streams_all_four_coefficients() -> None:
     )
     knob, emulated = rig()
     usb = knob.play(blocks, Hand("free"))
-    assert_same_as_sim(usb, SimKnob().play(blocks, Hand("free")))
+    assert_same_as_sim(usb, SimKnob(delay=1).play(blocks, Hand("free")))
     assert {b.mask for b in wire(emulated)} == {p.ALL_CHANNELS}
     assert len(emulated.wire_out[0]) == 1616  # 10 ms of four float32 channels, header, CRC
 
@@ -132,7 +132,7 @@ def test_a_small_device_buffer_is_never_overrun() -> None:
     knob, emulated = rig(small)
     blocks = float32_blocks(blocks_of(4000, d=lambda t: 0.05 * np.sin(2 * np.pi * 5 * t), k=3.0))
     usb = knob.play(blocks, Hand("hold"))
-    assert_same_as_sim(usb, SimKnob().play(blocks, Hand("hold")))
+    assert_same_as_sim(usb, SimKnob(delay=1).play(blocks, Hand("hold")))
     assert usb.flag("passivity").count == 4000  # k = 3 is above K_pass = 2 N*m/rad
     assert max(len(b.samples) for b in wire(emulated)) <= 50
     assert small.overruns == small.underruns == 0
@@ -168,7 +168,7 @@ def test_a_failure_stops_the_device_and_says_why_in_one_sentence(faults, error, 
     assert "\n" not in str(err.value)
     device = emulated.knob
     assert device.state == p.STATE_RAMPING and abs(device.torque) > 0.03  # STOP arrived
-    device.advance(0.0101)  # the 10 ms ramp, and one sample
+    device.advance(0.0102)  # the 10 ms ramp, its zero sample, one period of delay
     assert (device.state, device.torque) == (p.STATE_IDLE, 0.0)
     assert emulated.halted == set()  # a stalled endpoint was cleared
     again = knob.play(blocks_of(1000, d=0.02), Hand("hold"))  # and the device plays again
@@ -181,7 +181,7 @@ def test_an_unplugged_device_is_reported_and_its_watchdog_zeroes_the_torque() ->
         knob.play(blocks_of(5000, **STEADY), Hand("hold"))
     device = emulated.knob
     assert device.state == p.STATE_RUNNING and abs(device.torque) > 0.03  # nobody said STOP
-    device.advance(0.050 + 0.0101)  # watchdog + ramp after the last block, at most
+    device.advance(0.050 + 0.0102)  # watchdog + ramp after the last block, at most
     assert (device.state, device.torque) == (p.STATE_IDLE, 0.0)
     assert device.flags & p.FLAG_WATCHDOG
     assert UsbKnob.discover(backend=knob.backend) == []  # gone from the bus
@@ -224,7 +224,8 @@ def test_nan_and_inf_never_reach_the_wire() -> None:
     stream = np.concatenate([b.samples for b in wire(emulated)])
     assert np.isfinite(stream).all()
     assert stream[100].tolist() == stream[200].tolist() == [0.0, 0.0, 0.0]
-    assert usb.torque[100] == usb.torque[200] == 0.0 and usb.torque[101] != 0.0
+    # the zeros are applied one period later (the knob firmware's computation delay)
+    assert usb.torque[101] == usb.torque[201] == 0.0 and usb.torque[102] != 0.0
     assert "2 samples held NaN or infinite values and were sent as zero" in usb.warnings
     assert not emulated.knob.flags & p.FLAG_NON_FINITE  # the host cleaned them first
 

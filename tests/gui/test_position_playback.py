@@ -108,6 +108,10 @@ def test_holding_hand_plays_until_stop_and_a_new_hand_applies_at_once(fan_knob, 
     assert str(win.player.hand) == "push:100"
     assert win.player.playing
     qtbot.waitUntil(lambda: math.degrees(win.view.scene().playhead_u) > 250.0, timeout=15_000)
+    # 100 mNm flings the knob past the wall's end (0.8 x 180 mNm at 280 deg); wait until it has
+    # come back and rests where the wall balances the push (1 ms per scope sample)
+    qtbot.waitUntil(lambda: np.ptp(win.transport.scope.theta[-100:]) < 0.2, timeout=15_000)
+    assert math.degrees(win.view.scene().playhead_u) == pytest.approx(273.9, abs=1.0)
     assert win.transport.scope.tau[-1] < 0  # the wall beyond Hi pushes back
     # zoomed in, the view pages along so the playhead stays on screen
     win.view.zoom(4.0)

@@ -57,7 +57,7 @@ def test_every_injected_usb_fault_ends_safe_with_one_sentence(plan, d, k) -> Non
     else:
         assert len(tel) == n and np.isfinite(tel.torque).all()
     device = emulated.knob
-    device.advance(0.050 + 0.0101)  # watchdog + ramp: whatever happened, the motor is off
+    device.advance(0.050 + 0.0102)  # watchdog + ramp + the one-period delay: the motor is off
     assert (device.state, device.torque) == (p.STATE_IDLE, 0.0)
 
 
