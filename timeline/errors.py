@@ -1,5 +1,7 @@
 """Errors a user can cause: each carries one clear sentence."""
 
+import math
+
 
 class HapticTimelineError(Exception):
     """Base class for mistakes in input, reported as one sentence without a traceback."""
@@ -19,3 +21,11 @@ class RenderError(HapticTimelineError):
 
 class PluginError(HapticTimelineError):
     """A plugin (track kind, format or device) is unknown or failed to load."""
+
+
+def finite(name: str, value: float) -> float:
+    """`value` as a float, or an EditError naming `name` when it is NaN or infinite."""
+    value = float(value)
+    if not math.isfinite(value):
+        raise EditError(f"{name} must be a finite number, not {value!r}")
+    return value

@@ -6,21 +6,13 @@ kept sorted by position; the loop region is a half-open range [start, stop) or N
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
-from timeline.errors import EditError
+from timeline.errors import EditError, finite
 
 if TYPE_CHECKING:
     from timeline.model import Project
-
-
-def _place(name: str, value: float) -> float:
-    value = float(value)
-    if not math.isfinite(value):
-        raise EditError(f"{name} must be a finite number, not {value!r}")
-    return value
 
 
 @dataclass(frozen=True)
@@ -31,7 +23,7 @@ class Marker:
     at: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "at", _place("a marker's position", self.at))
+        object.__setattr__(self, "at", finite("a marker's position", self.at))
         if not self.name.strip():
             raise EditError("a marker needs a name")
 
@@ -44,8 +36,8 @@ class LoopRegion:
     stop: float
 
     def __post_init__(self) -> None:
-        start = _place("the loop's start", self.start)
-        stop = _place("the loop's end", self.stop)
+        start = finite("the loop's start", self.start)
+        stop = finite("the loop's end", self.stop)
         if stop <= start:
             raise EditError("a loop region must end after it starts")
         object.__setattr__(self, "start", start)
@@ -64,7 +56,7 @@ def next_marker_name(project: Project) -> str:
 
 def add_marker(project: Project, at: float, name: str | None = None) -> tuple[Project, int]:
     """Add a marker (a free name "Mn" unless named); returns its index in the sorted markers."""
-    marker = Marker(name or next_marker_name(project), max(0.0, _place("a marker", at)))
+    marker = Marker(name or next_marker_name(project), max(0.0, finite("a marker", at)))
     markers = _sorted((*project.markers, marker))
     return replace(project, markers=markers), markers.index(marker)
 
@@ -73,7 +65,7 @@ def move_marker(project: Project, index: int, at: float) -> Project:
     """Move the marker at an index to another place."""
     marker = _marker(project, index)
     rest = [m for i, m in enumerate(project.markers) if i != index]
-    moved = replace(marker, at=max(0.0, _place("a marker", at)))
+    moved = replace(marker, at=max(0.0, finite("a marker", at)))
     return replace(project, markers=_sorted((*rest, moved)))
 
 

@@ -15,7 +15,7 @@ from typing import Any
 
 from immutables import Map
 
-from timeline.errors import EditError
+from timeline.errors import EditError, finite
 from timeline.id_sequence import IdSequence
 from timeline.markers import LoopRegion, Marker
 from timeline.tiles import Tile
@@ -25,13 +25,6 @@ FADE_SHAPES = ("linear", "equal-power", "exponential", "s-curve")
 STRETCH_MODES = ("squeeze", "repeat")
 DEFAULT_TIME_RATE = 10_000.0  # Hz: the paper's knob servo rate
 DEFAULT_POSITION_RATE = 180.0 / math.pi / 0.01  # samples per radian: one every 0.01 degree
-
-
-def _finite(name: str, value: float) -> float:
-    value = float(value)
-    if not math.isfinite(value):
-        raise EditError(f"{name} must be a finite number, not {value!r}")
-    return value
 
 
 @dataclass(frozen=True)
@@ -44,7 +37,7 @@ class Fade:
     def __post_init__(self) -> None:
         if self.length == 0.0 and type(self.length) is float and self.shape == "linear":
             return  # no fade: the common case, nothing to check
-        length = _finite("a fade's length", self.length)
+        length = finite("a fade's length", self.length)
         if length < 0:
             raise EditError(f"a fade's length cannot be negative ({length})")
         if self.shape not in FADE_SHAPES:
@@ -89,7 +82,7 @@ class Clip:
         for name in _CLIP_NUMBERS:
             value = getattr(self, name)
             if type(value) is not float or not math.isfinite(value):  # the message only if bad
-                object.__setattr__(self, name, _finite(f"a clip's {name.replace('_', ' ')}", value))
+                object.__setattr__(self, name, finite(f"a clip's {name.replace('_', ' ')}", value))
         self._check_ranges()
 
     @classmethod
@@ -240,7 +233,7 @@ class Project:
     def __post_init__(self) -> None:
         if self.axis not in AXES:
             raise EditError(f"unknown axis {self.axis!r} (choose time or position)")
-        rate = _finite("the project's rate", self.rate)
+        rate = finite("the project's rate", self.rate)
         if rate <= 0:
             raise EditError(f"the project's rate must be positive, not {rate}")
         object.__setattr__(self, "rate", rate)
