@@ -32,7 +32,10 @@ def number(value: Any, where: str, lo: float = -math.inf, hi: float = math.inf) 
     """A finite JSON number within [lo, hi], or a FormatError saying where."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise FormatError(f"{where} must be a number")
-    value = float(value)
+    try:
+        value = float(value)
+    except OverflowError:  # an integer literal beyond float range
+        raise FormatError(f"{where} is too large (it must be between {lo:g} and {hi:g})") from None
     if not (math.isfinite(value) and lo <= value <= hi):
         raise FormatError(f"{where} must be between {lo:g} and {hi:g}, not {value:g}")
     return value

@@ -388,6 +388,8 @@ def read_design(path: Path) -> tuple[VibrationDesign, str, list[str]]:
             frequency = _pairs(*_stepped(knots, player, 1))
     emphasis = [Emphasis(e["time"], e["intensity"] ** 2, e["sharpness"]) for e in transients]
     ends = [t for t, _ in amplitude + frequency] + [e.time + e.length for e in emphasis]
+    if not ends:
+        raise FormatError(f"{path.name} holds no haptic events that last (every event lasts 0 s)")
     design = VibrationDesign(tuple(amplitude), tuple(frequency), tuple(emphasis), max(ends))
     return design, convention, notes
 

@@ -383,3 +383,23 @@ def test_an_ahap_without_events_says_so(tmp_path):
     with pytest.raises(FormatError, match="holds no haptic events"):
         importing.read_file(path)
     assert math.isfinite(ahap.MAX_EVENTS)
+
+
+def test_ahap_fuzz_finds_are_one_sentence(tmp_path):
+    """Found by the reliability fuzzer: a zero-length-only pattern and an integer beyond float."""
+    only_zero = {
+        "Pattern": [{"Event": {"Time": 0.0, "EventType": "HapticContinuous", "EventDuration": 0.0}}]
+    }
+    huge = {
+        "Pattern": [
+            {"Event": {"Time": 10**400, "EventType": "HapticTransient", "EventParameters": []}}
+        ]
+    }
+    for name, doc, says in (
+        ("zero.ahap", only_zero, "holds no haptic events that last"),
+        ("huge.ahap", huge, "is too large"),
+    ):
+        path = tmp_path / name
+        path.write_text(json.dumps(doc))
+        with pytest.raises(FormatError, match=says):
+            importing.read_file(path)
