@@ -43,25 +43,24 @@ def _cell(value: object) -> str:
     return str(value)
 
 
-def best_time(fn: Callable[[], object], repeat: int) -> float:
-    """Smallest wall time of `repeat` calls (seconds): the least disturbed run."""
+def _best(fn: Callable[[], object], repeat: int, clock: Callable[[], float]) -> float:
     best = math.inf
     for _ in range(repeat):
-        start = time.perf_counter()
+        start = clock()
         fn()
-        best = min(best, time.perf_counter() - start)
+        best = min(best, clock() - start)
     return best
+
+
+def best_time(fn: Callable[[], object], repeat: int) -> float:
+    """Smallest wall time of `repeat` calls (seconds): the least disturbed run."""
+    return _best(fn, repeat, time.perf_counter)
 
 
 def best_cpu_time(fn: Callable[[], object], repeat: int) -> float:
     """Smallest CPU time of this process (all its threads) over `repeat` calls (seconds): what a
     call costs, whatever else the machine runs meanwhile."""
-    best = math.inf
-    for _ in range(repeat):
-        start = time.process_time()
-        fn()
-        best = min(best, time.process_time() - start)
-    return best
+    return _best(fn, repeat, time.process_time)
 
 
 def figure(width: float = 7.0, height: float = 4.5, ncols: int = 1):
