@@ -23,6 +23,7 @@ The shared interface for .haptic/AHAP import and export and for `convert`:
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -61,20 +62,9 @@ EDIT_TOLERANCE = 0.005  # max amplitude error of breakpoints reduced after a fad
 FADE_GRID = 0.001  # s between fade samples before reduction
 
 
-def place_design(
-    project: Project,
-    design: VibrationDesign,
-    *,
-    at: float = 0.0,
-    track_id: str | None = None,
-    name: str = "vibration",
-    source: str = "",
-    sharpness: str = "sqrt",
-) -> Project:
-    """Put a design on a drive track at `at` seconds as editable envelope data."""
-    return place_design_clip(
-        project, design, at=at, track_id=track_id, name=name, source=source, sharpness=sharpness
-    )[0]
+def place_design(project: Project, design: VibrationDesign, **options: Any) -> Project:
+    """Put a design on a drive track as editable envelope data (options: place_design_clip's)."""
+    return place_design_clip(project, design, **options)[0]
 
 
 def place_design_clip(
