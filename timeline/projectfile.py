@@ -7,12 +7,10 @@ the previous file intact.
 
 from __future__ import annotations
 
-import base64
 import gc
 import json
 import math
 import os
-import zlib
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from json.encoder import c_make_encoder, encode_basestring_ascii  # type: ignore[attr-defined]
@@ -23,13 +21,14 @@ from typing import Any
 
 import numpy as np
 
+from timeline import media as sample_media
 from timeline import project_fields as fields
 from timeline.atomic import write_atomically
 from timeline.errors import EditError, HapticTimelineError, ProjectFileError
 from timeline.markers import LoopRegion, Marker, markers_to_json
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.project_fields import FieldError
-from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
+from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
@@ -57,19 +56,9 @@ MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2, 2: _schema_2
 # --- writing -----------------------------------------------------------------------------------
 
 
-def _encode_samples(data: np.ndarray) -> dict[str, Any]:
-    raw = np.ascontiguousarray(data, dtype="<f8").tobytes()
-    return {
-        "dtype": "<f8",
-        "count": int(data.size),
-        "encoding": "zlib+base64",
-        "data": base64.b64encode(zlib.compress(raw, 6)).decode("ascii"),
-    }
-
-
 def _tile_to_json(tile: Tile, media: dict[str, Any]) -> dict[str, Any]:
     if isinstance(tile, SampledTile):
-        media.setdefault(tile.key, _encode_samples(tile.data))
+        media.setdefault(tile.key, sample_media.encode(tile.data))
         return {
             "type": "sampled",
             "name": tile.name,
@@ -266,26 +255,6 @@ def save(project: Project, path: str | os.PathLike) -> None:
 
 
 # --- reading -----------------------------------------------------------------------------------
-
-
-def _decode_samples(entry: Any, where: str) -> np.ndarray:
-    if (
-        fields.get(entry, "dtype", str, where) != "<f8"
-        or fields.get(entry, "encoding", str, where) != "zlib+base64"
-    ):
-        raise FieldError(f"{where} uses an unknown sample encoding")
-    count = fields.get(entry, "count", int, where)
-    if not 0 < count <= MAX_TILE_SAMPLES:
-        raise FieldError(f"{where} declares {count} samples, outside the supported range")
-    try:
-        packed = base64.b64decode(fields.get(entry, "data", str, where), validate=True)
-        inflater = zlib.decompressobj()
-        raw = inflater.decompress(packed, count * 8 + 1)  # never inflate more than declared
-    except (ValueError, zlib.error):
-        raise FieldError(f"{where} holds damaged sample data") from None
-    if len(raw) != count * 8 or inflater.unconsumed_tail or not inflater.eof:
-        raise FieldError(f"{where} holds {len(raw) // 8} samples but declares {count}")
-    return np.frombuffer(raw, dtype="<f8").astype(np.float64)
 
 
 def _tile_from_json(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
@@ -496,7 +465,7 @@ def from_json(doc: Any) -> Project:
         version += 1
     body = fields.get(doc, "project", dict, "the file")
     media = {
-        k: _decode_samples(v, f"media {k!r}")
+        k: sample_media.decode(v, f"media {k!r}")
         for k, v in fields.get(doc, "media", dict, "the file").items()
     }
 
