@@ -11,6 +11,7 @@ import gc
 import json
 import math
 import os
+import secrets
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from json.encoder import c_make_encoder, encode_basestring_ascii  # type: ignore[attr-defined]
@@ -56,9 +57,13 @@ MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2, 2: _schema_2
 # --- writing -----------------------------------------------------------------------------------
 
 
-def _tile_to_json(tile: Tile, media: dict[str, Any]) -> dict[str, Any]:
+MediaEntry = Callable[[np.ndarray], dict[str, Any]]
+
+
+def _tile_to_json(tile: Tile, media: dict[str, Any], entry: MediaEntry) -> dict[str, Any]:
     if isinstance(tile, SampledTile):
-        media.setdefault(tile.key, sample_media.encode(tile.data))
+        if tile.key not in media:  # a recording shared by tiles and variants is encoded once
+            media[tile.key] = entry(tile.data)
         return {
             "type": "sampled",
             "name": tile.name,
@@ -131,13 +136,20 @@ def _id_order(item_id: str) -> tuple[str, int, str]:
     return (stem, int(digits) if digits else -1, item_id)
 
 
-def to_json(project: Project, clip_json: Callable[[Clip], Any] = _clip_to_json) -> dict[str, Any]:
+def to_json(
+    project: Project,
+    clip_json: Callable[[Clip], Any] = _clip_to_json,
+    media_entry: MediaEntry = sample_media.encode,
+) -> dict[str, Any]:
     """The project as a JSON-ready dict (schema SCHEMA); clip_json writes each clip of the
-    project's own tracks (a variant's tracks are saved one line each, as plain dicts)."""
+    project's own tracks (a variant's tracks are saved one line each, as plain dicts) and
+    media_entry each recording's samples."""
     media: dict[str, Any] = {}
 
     def tiles(mapping) -> dict[str, Any]:  # in id order, so a saved file's bytes are stable
-        return {k: _tile_to_json(mapping[k], media) for k in sorted(mapping, key=_id_order)}
+        return {
+            k: _tile_to_json(mapping[k], media, media_entry) for k in sorted(mapping, key=_id_order)
+        }
 
     body = {
         "axis": project.axis,
@@ -240,18 +252,40 @@ def _text(value: Any, compact: Callable[[Any], str], depth: int = 0) -> str:
     return "[" + pad + ("," + pad).join(_text(v, compact, depth + 1) for v in value) + close + "]"
 
 
-def dumps(project: Project) -> str:
+def dumps(project: Project, media_entry: MediaEntry = sample_media.encode) -> str:
     """The project file's text."""
     try:
-        return _text(to_json(project, _clip_line), _compact_encoder()) + "\n"
+        return _text(to_json(project, _clip_line, media_entry), _compact_encoder()) + "\n"
     except (TypeError, ValueError) as exc:
         raise ProjectFileError(f"the project cannot be saved: {exc}") from None
 
 
 def save(project: Project, path: str | os.PathLike) -> None:
-    """Write the project atomically: the old file stays intact until the new one is complete."""
-    text = dumps(project).encode("utf-8")
-    write_atomically(path, lambda tmp: tmp.write_bytes(text))
+    """Write the project atomically: the old file stays intact until the new one is complete.
+
+    The bytes are dumps(project)'s, but each recording's samples are streamed into the file in
+    pieces where its text would be, so an hour's base64 is never held as one string.
+    """
+    marker = f"\0samples-{secrets.token_hex(8)}-"  # in no other string of the file
+    recordings: list[np.ndarray] = []
+
+    def placeholder(data: np.ndarray) -> dict[str, Any]:
+        recordings.append(data)
+        return sample_media.header(data, f"{marker}{len(recordings) - 1}")
+
+    text = dumps(project, placeholder)
+
+    def write(tmp: Path) -> None:
+        with open(tmp, "wb") as out:
+            rest = text
+            for i, data in enumerate(recordings):
+                before, rest = rest.split(_COMPACT.encode(f"{marker}{i}"), 1)
+                out.write(before.encode("utf-8") + b'"')
+                sample_media.write_base64(data, out)
+                out.write(b'"')
+            out.write(rest.encode("utf-8"))
+
+    write_atomically(path, write)
 
 
 # --- reading -----------------------------------------------------------------------------------
@@ -563,9 +597,14 @@ def _collector_paused() -> Iterator[None]:
 
 def loads(text: str | bytes, name: str = "the project") -> Project:
     """Parse a project file's content."""
+    return _opened(lambda: json.loads(text, parse_constant=fields.refuse_constant), name)
+
+
+def _opened(parse: Callable[[], Any], name: str) -> Project:
+    """The project from parse()'s document; any problem is one ProjectFileError sentence."""
     try:
         with _collector_paused():
-            doc = json.loads(text, parse_constant=fields.refuse_constant)
+            doc = parse()
             return from_json(doc)
     except FieldError as exc:
         raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
@@ -587,4 +626,8 @@ def load(path: str | os.PathLike) -> Project:
     size = path.stat().st_size
     if size > MAX_FILE_BYTES:
         raise ProjectFileError(f"{path} is {size} bytes, larger than a project file can be")
-    return loads(path.read_bytes(), str(path))
+
+    def parse() -> Any:  # the file's bytes are let go once parsed, before recordings are inflated
+        return json.loads(path.read_bytes(), parse_constant=fields.refuse_constant)
+
+    return _opened(parse, str(path))

@@ -14,6 +14,7 @@ from importers import audio
 from timeline import edits, media, projectfile
 from timeline.errors import ProjectFileError
 from timeline.project_fields import FieldError
+from timeline.tiles import SampledTile
 
 
 def _float32(n: int) -> np.ndarray:
@@ -84,3 +85,20 @@ def audio_tile(tmp_path):
     wav = tmp_path / "short.wav"
     sf.write(wav, np.asarray(_float32(3000), dtype=np.float64), 8000, subtype="PCM_24")
     return audio.FORMAT.read(wav)
+
+
+def test_a_streamed_save_writes_the_bytes_of_dumps(tmp_path, monkeypatch):
+    monkeypatch.setattr(media, "BLOCK_SAMPLES", 1000)  # several blocks and base64 carries
+    monkeypatch.setattr(media, "SMALL_BYTES", 100)  # the large-media level
+    project = edits.new_project(title="\0samples-0-0, a title like the writer's placeholders")
+    for n, dtype in ((3001, np.float32), (2500, np.float64), (3001, np.float32)):
+        data = np.random.default_rng(n).standard_normal(n).astype(dtype)
+        data.setflags(write=False)
+        project, _ = edits.add_tile(project, SampledTile(data, 1000.0, f"r{n}"))
+    path = tmp_path / "p.htl"
+    projectfile.save(project, path)
+    assert path.read_bytes() == projectfile.dumps(project).encode("utf-8")
+    assert path.read_text().count('"encoding"') == 2  # the third tile shares the first's samples
+    loaded = projectfile.load(path)
+    for tile_id, tile in project.tiles.items():
+        assert loaded.tile(tile_id) == tile
