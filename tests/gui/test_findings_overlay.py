@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from PySide6.QtCore import Qt
 
-from tests.gui.helpers import click, clip_point
+from tests.gui.helpers import choose, click, clip_point
 from timeline import edits, generator
 
 
@@ -81,11 +81,7 @@ def test_a_buzz_a_grasp_cannot_feel_is_shaded_when_the_grasp_is_chosen(window, q
 
     assert not buzz_unfelt()
     box = win.transport.hand_model
-    qtbot.mouseClick(box, Qt.MouseButton.LeftButton)  # opens the list: pick "grasp" by keys
-    qtbot.waitUntil(lambda: box.view().isVisible(), timeout=5_000)
-    while box.view().currentIndex().data() != "grasp":
-        qtbot.keyClick(box.view(), Qt.Key.Key_Down)
-    qtbot.keyClick(box.view(), Qt.Key.Key_Return)
+    choose(qtbot, box, "grasp")
     assert win.player.hand.model == "grasp"
     qtbot.waitUntil(lambda: win.findings.settled and buzz_unfelt(), timeout=20_000)
     shaded = [s for s in win.findings.shades if s.kind == "below-detection"]
