@@ -17,11 +17,35 @@ FREQUENCY_TOLERANCE = 0.02
 GRID = 0.001  # s between analysed envelope samples before reduction
 ANALYSIS_WINDOW = 0.01  # s: carrier frequency window (about one period at F_MIN)
 
+MEDIAN_BLOCK = 2**20  # envelope samples copied into windows for one median call
+
 Points = list[tuple[float, float]]
 
 
 def _window_sum(values: np.ndarray, width: int) -> np.ndarray:
     return np.convolve(values, np.ones(width), "same")
+
+
+def window_medians(
+    values: np.ndarray, centres: np.ndarray, half: int, block: int = MEDIAN_BLOCK
+) -> np.ndarray:
+    """The median of values[c - half : c + half + 1] (cut at the ends) for each centre c.
+
+    Windows are copied `block` samples at a time, so memory stays bounded on long recordings."""
+    out = np.empty(len(centres))
+    inner = (centres >= half) & (centres + half < len(values))
+    if len(values) > 2 * half:
+        windows = np.lib.stride_tricks.sliding_window_view(values, 2 * half + 1)
+        starts = centres[inner] - half
+        medians = np.empty(len(starts))
+        rows = max(1, block // (2 * half + 1))
+        for lo in range(0, len(starts), rows):
+            medians[lo : lo + rows] = np.median(windows[starts[lo : lo + rows]], axis=1)
+        out[inner] = medians
+    for k in np.flatnonzero(~inner):  # the few windows the ends cut short
+        c = centres[k]
+        out[k] = np.median(values[max(0, c - half) : c + half + 1])
+    return out
 
 
 def envelope_breakpoints(x: np.ndarray, rate: float) -> tuple[Points, Points]:
@@ -46,8 +70,7 @@ def envelope_breakpoints(x: np.ndarray, rate: float) -> tuple[Points, Points]:
     centres = np.arange(0, len(x), step)
     if centres[-1] != len(x) - 1:
         centres = np.append(centres, len(x) - 1)
-    half = step // 2
-    amp = np.array([np.median(envelope[max(0, c - half) : c + half + 1]) for c in centres])
+    amp = window_medians(envelope, centres, step // 2)
     hz = omega[centres] * rate / (2.0 * np.pi)
     times = centres / rate
     return (
