@@ -20,6 +20,7 @@ from functools import lru_cache
 import numpy as np
 
 from timeline.harmonic_waves import HARMONIC, aliased_fraction, synthesise
+from timeline.vibration_design import carrier_hz
 
 # Square/saw/triangle waves are synthesised band-limited when a naive sampling would fold back
 # more than this share of their power (-30 dB); below it they are sampled as the ideal wave.
@@ -39,6 +40,7 @@ _HIGHEST: dict[str, Callable[[np.ndarray, float, Mapping[str, float]], np.ndarra
     "chirp": lambda u, d, p: np.abs(_chirp_frequency(u, d, p)),
     "am": lambda u, d, p: abs(p["carrier"]) + abs(p["modulation"]),
     "detents": lambda u, d, p: abs(p["count"]) / d,
+    "emphasis": lambda u, d, p: carrier_hz(p["frequency"]),
 }
 
 
