@@ -55,5 +55,6 @@ def test_rendering_an_example_loads_neither_plotting_gui_nor_compiler(tmp_path):
     # the mixer needs neither scipy's splines nor its BLAS; plotting, the GUI and the compiled
     # sim loop load only for the verbs that use them
     assert not {"matplotlib", "numba", "PySide6", "scipy.interpolate", "scipy.linalg"} & set(loaded)
-    # writing CSV loads the CSV format plugin, not the .mat (scipy.io) or OTIO ones after it
-    assert not {"scipy", "opentimelineio"} & set(loaded)
+    # writing CSV loads the CSV format plugin (named after the extension) and no other: not the
+    # audio one before it in name order (soundfile), nor .mat (scipy.io) or OTIO after it
+    assert not {"scipy", "opentimelineio", "soundfile"} & set(loaded)
