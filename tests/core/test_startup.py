@@ -40,10 +40,9 @@ def test_help_loads_no_heavy_library():
 
 
 def test_each_verbs_help_loads_no_heavy_library():
-    from timeline.cli.main import VERB_MODULES
+    from timeline.cli.main import VERBS
 
-    for module in VERB_MODULES:  # every verb, including ones added later
-        verb = module.rsplit(".", 1)[1].removesuffix("_cmd")
+    for verb in VERBS:  # every verb, including ones added later
         assert _loaded(verb, "--help")[1] == [], verb
 
 
@@ -58,3 +57,13 @@ def test_rendering_an_example_loads_neither_plotting_gui_nor_compiler(tmp_path):
     # writing CSV loads the CSV format plugin (named after the extension) and no other: not the
     # audio one before it in name order (soundfile), nor .mat (scipy.io) or OTIO after it
     assert not {"scipy", "opentimelineio", "soundfile"} & set(loaded)
+
+
+def test_each_verb_module_defines_the_verb_it_is_named_for():
+    from timeline.cli.main import VERBS, build_parser
+
+    parser = build_parser()
+    assert set(parser._subparsers._group_actions[0].choices) == set(VERBS)
+    for verb in VERBS:
+        alone = build_parser(verb)._subparsers._group_actions[0].choices
+        assert list(alone) == [verb]
