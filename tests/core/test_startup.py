@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
+
+import pytest
 
 PROJECTS = Path(__file__).resolve().parents[2] / "projects"
 HEAVY = ("numpy", "scipy", "scipy.interpolate", "scipy.linalg", "matplotlib", "numba", "PySide6",
@@ -67,3 +70,32 @@ def test_each_verb_module_defines_the_verb_it_is_named_for():
     for verb in VERBS:
         alone = build_parser(verb)._subparsers._group_actions[0].choices
         assert list(alone) == [verb]
+
+
+BLAS_PROBE = """
+import ctypes, sys
+from timeline.cli.main import main
+main(["info", sys.argv[1]])
+import numpy, scipy.linalg  # numpy's and scipy's own OpenBLAS builds
+counts = []
+for path in sorted({line.split()[-1] for line in open("/proc/self/maps") if "openblas" in line}):
+    lib = ctypes.CDLL(path)
+    for name in ("scipy_openblas_get_num_threads64_", "scipy_openblas_get_num_threads"):
+        if hasattr(lib, name):
+            counts.append(getattr(lib, name)())
+print(counts)
+"""
+
+
+@pytest.mark.skipif(not Path("/proc/self/maps").exists(), reason="reads the loaded libraries")
+def test_the_command_line_holds_openblas_to_one_thread_unless_told_otherwise():
+    example = str(PROJECTS / "rising_resistance.htl")
+
+    def threads(**env: str) -> list[int]:
+        clean = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+        argv = [sys.executable, "-c", BLAS_PROBE, example]
+        done = subprocess.run(argv, capture_output=True, text=True, env={**clean, **env})
+        return json.loads(done.stdout.strip().splitlines()[-1])
+
+    assert threads() == [1, 1]  # numpy's and scipy's
+    assert threads(OPENBLAS_NUM_THREADS="2") == [2, 2]

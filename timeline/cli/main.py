@@ -68,8 +68,20 @@ def _with_default_verb(argv: list[str], verbs: set[str]) -> list[str]:
     )
 
 
+def one_blas_thread() -> None:
+    """Hold OpenBLAS to one thread unless the user chose otherwise (before numpy loads).
+
+    Every matrix the project factors or multiplies is tiny (the servo loop's 3x3 to 40x40), and
+    the mixer uses no BLAS; worker threads only spin against the mixer and the simulator. On this
+    2-core machine under load a 3x3 expm took up to 20 ms with the pool (0.04 ms alone), and the
+    simulator's stability flags were 150x slower.
+    """
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one verb; a user's mistake prints one sentence on stderr and returns non-zero."""
+    one_blas_thread()
     try:
         argv = _with_default_verb(sys.argv[1:] if argv is None else argv, set(VERBS))
     except HapticTimelineError as exc:
