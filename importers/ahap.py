@@ -33,14 +33,13 @@ import numpy as np
 
 from importers import _vibration as vib
 from importers._envelope_fit import roots_of_lines, squares_of_roots
-from timeline.formats import FormatError, Imported, Placement, Progress
+from timeline.formats import FormatError, Imported, Progress
 from timeline.model import Project
 from timeline.vibration import (
-    DRIVE,
     Emphasis,
     VibrationDesign,
-    VibrationTile,
     design_of,
+    design_placements,
     sharpness_convention,
 )
 from timeline.vibration_analysis import simplify
@@ -514,10 +513,9 @@ class AhapFormat:
         """The pattern as one vibration design on a drive track."""
         path = Path(path)
         design, convention, notes = read_design(path)
-        tile = VibrationTile(design, path.stem, str(path), convention)
         if progress is not None:
             progress(1.0)
-        return Imported((Placement(tile, start=0.0, kind=DRIVE),), notes=tuple(notes))
+        return design_placements(design, path.stem, str(path), convention, tuple(notes))
 
     def write(self, source: Project, path: Path, rate: float | None = None, **options: Any) -> None:
         """Write the project's sounding drive tracks as an AHAP pattern."""

@@ -1,8 +1,11 @@
 """Audio files through soundfile/libsndfile: read a recording as a tile, write mixed layers.
 
-Reading keeps the file's samples exactly (as float64) and its rate; the mixer resamples to the
-project rate. Files are read in blocks into one preallocated array, so an hour-long file costs
-the array plus the tile's own copy, and progress is reported per block.
+Reading keeps the file's samples exactly and its rate; the mixer resamples to the project rate.
+Files are read in blocks into one preallocated array that the tile keeps: float32 when every
+value is a float32 exactly (16- and 24-bit PCM, float files, a stereo mix of PCM), which
+halves an hour's memory and reads back the same float64 values, else float64. Each block is
+hashed for the tile's content key as it arrives, integer PCM needs no finiteness scan, and
+progress is reported per block.
 """
 
 from __future__ import annotations
@@ -14,8 +17,9 @@ from typing import Any
 import numpy as np
 import soundfile as sf
 
+from importers._sample_store import SampleStore
 from timeline.formats import FormatError, Layers, Progress
-from timeline.memory import require
+from timeline.samples import first_non_finite
 from timeline.tiles import MAX_TILE_SAMPLES, SampledTile
 
 BLOCK_FRAMES = 1 << 16
@@ -76,12 +80,9 @@ def _channel_index(channel: int | str | None, channels: int, name: str) -> int |
     return number - 1
 
 
-def _grown(out: np.ndarray, size: int, name: str) -> np.ndarray:
-    """out copied into a larger array (its first part kept), within the memory available."""
-    require(8 * (out.size + size), f"reading {name}")
-    bigger = np.empty(size, dtype=np.float64)
-    bigger[: out.size] = out
-    return bigger
+def _integer_subtype(subtype: str) -> bool:
+    """True for subtypes that hold integers: every sample read from them is finite."""
+    return subtype.startswith("PCM_") or subtype in ("ULAW", "ALAW")
 
 
 class AudioFormat:
@@ -120,51 +121,62 @@ class AudioFormat:
         with _open(path) as f:
             _check_complete(path, f)
             keep = _channel_index(channel, f.channels, path.name)
-            data = self._read_blocks(path, f, keep, progress)
-            rate = f.samplerate
+            data, key = self._read_blocks(path, f, keep, progress)
+            rate = float(f.samplerate)
         suffix = "" if keep is None or f.channels == 1 else f" ch{keep + 1}"
-        return SampledTile(data, rate, path.stem + suffix, str(path))
+        return SampledTile.from_checked(data, rate, path.stem + suffix, str(path), key)
 
     @staticmethod
     def _read_blocks(
         path: Path, f: sf.SoundFile, keep: int | None, progress: Progress | None
-    ) -> np.ndarray:
+    ) -> tuple[np.ndarray, str]:
         total = f.frames
         if total <= 0:
             raise FormatError(f"{path.name} holds no audio samples")
         # A compressed header (FLAC) may declare far more frames than the file holds: grow the
         # array as audio arrives, starting from what the file's size can plausibly hold.
-        out = np.empty(min(total, max(BLOCK_FRAMES, 64 * path.stat().st_size)), dtype=np.float64)
+        store = SampleStore(
+            f.subtype,
+            f.channels if keep is None else 1,
+            min(total, max(BLOCK_FRAMES, 64 * path.stat().st_size)),
+            path.name,
+        )
+        scan = not _integer_subtype(f.subtype)
         done = 0
         block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=np.float64)
+        mono = np.empty(block.shape[0], dtype=np.float64)
         try:
             while done < total:
                 n = f.read(out=block[: min(BLOCK_FRAMES, total - done)]).shape[0]
                 if n == 0:
                     break
-                if done + n > out.size:
-                    out = _grown(out, min(total, 2 * (done + n)), path.name)
-                part = block[:n]
+                part = mono[:n]
                 if keep is None:
-                    np.mean(part, axis=1, out=out[done : done + n])
+                    np.mean(block[:n], axis=1, out=part)
                 else:
-                    out[done : done + n] = part[:, keep]
-                if not np.isfinite(out[done : done + n]).all():
-                    bad = done + int(np.flatnonzero(~np.isfinite(out[done : done + n]))[0])
+                    part[:] = block[:n, keep]
+                bad = first_non_finite(part) if scan else None
+                if bad is not None:
                     raise FormatError(
-                        f"{path.name} has a sample that is not a finite number (frame {bad})"
+                        f"{path.name} has a sample that is not a finite number (frame {done + bad})"
                     )
+                store.append(part, total)
                 done += n
                 if progress is not None:
                     progress(done / total)
+            if done < total:
+                raise FormatError(
+                    f"{path.name} is truncated: it ends after {done} of {total} frames"
+                )
         except sf.LibsndfileError as exc:
+            store.abandon()
             raise FormatError(
                 f"{path.name} could not be read to the end ({exc.error_string})"
             ) from None
-        if done < total:
-            raise FormatError(f"{path.name} is truncated: it ends after {done} of {total} frames")
-        out.setflags(write=False)  # the tile keeps this array rather than a copy
-        return out
+        except BaseException:  # a refusal, a cancel from the progress callback, ...
+            store.abandon()
+            raise
+        return store.finish(float(f.samplerate))
 
     def write(self, source: Layers, path: Path, subtype: str | None = None, **options: Any) -> None:
         """Write the layers as channels (in column order) at their rate; float by default."""

@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 
 from importers import _vibration as vib
-from timeline.formats import FormatError, Imported, Placement, Progress
+from timeline.formats import FormatError, Imported, Progress
 from timeline.model import Project
-from timeline.vibration import DRIVE, Emphasis, VibrationDesign, VibrationTile, design_of
+from timeline.vibration import Emphasis, VibrationDesign, design_of, design_placements
 from timeline.vibration_design import DEFAULT_FREQUENCY
 
 
@@ -168,10 +168,9 @@ class LofeltFormat:
         """The file's envelopes and emphasis as one vibration design on a drive track."""
         path = Path(path)
         design, notes = read_design(path)
-        tile = VibrationTile(design, path.stem, str(path), "sqrt")
         if progress is not None:
             progress(1.0)
-        return Imported((Placement(tile, start=0.0, kind=DRIVE),), notes=tuple(notes))
+        return design_placements(design, path.stem, str(path), "sqrt", tuple(notes))
 
     def write(self, source: Project, path: Path, rate: float | None = None, **options: Any) -> None:
         """Write the project's sounding drive tracks as a v1 .haptic file."""

@@ -15,10 +15,12 @@ limit). `aliasing_notes` names the clips whose rendering departs audibly from th
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from functools import lru_cache
 
 import numpy as np
 
 from timeline.harmonic_waves import HARMONIC, aliased_fraction, synthesise
+from timeline.vibration_design import carrier_hz
 
 # Square/saw/triangle waves are synthesised band-limited when a naive sampling would fold back
 # more than this share of their power (-30 dB); below it they are sampled as the ideal wave.
@@ -38,6 +40,7 @@ _HIGHEST: dict[str, Callable[[np.ndarray, float, Mapping[str, float]], np.ndarra
     "chirp": lambda u, d, p: np.abs(_chirp_frequency(u, d, p)),
     "am": lambda u, d, p: abs(p["carrier"]) + abs(p["modulation"]),
     "detents": lambda u, d, p: abs(p["count"]) / d,
+    "emphasis": lambda u, d, p: carrier_hz(p["frequency"]),
 }
 
 
@@ -54,17 +57,35 @@ def band_limited(
     if generator in HARMONIC:
         if abs(params["frequency"]) >= nyquist:
             return np.zeros(np.shape(u))
-        if aliased_fraction(generator, params, nyquist) <= ALIAS_LIMIT:
+        folded = _aliased_fraction(generator, params["frequency"], params.get("duty"), nyquist)
+        if folded <= ALIAS_LIMIT:
             return evaluate(u)
         with np.errstate(all="ignore"):
             values = synthesise(generator, u, params, nyquist)
         return np.where((u < 0) | (u > duration), 0.0, values)
-    values = evaluate(u)
     highest = _HIGHEST.get(generator)
     if highest is None:
-        return values
+        return evaluate(u)
+    # Each shape's highest frequency is constant or monotone in u (a chirp's |f0 + (f1-f0)u/d|
+    # or f0 (f1/f0)^(u/d)), so its largest value over u is at the ends of u's range.
+    u = np.asarray(u, dtype=np.float64)
+    if u.size == 0:
+        return evaluate(u)
+    ends = np.array([u.min(), u.max()])
+    top = np.broadcast_to(highest(ends, duration, params), ends.shape)
+    if top.max() < nyquist:
+        return evaluate(u)  # nothing reaches Nyquist: no mask, the same values
+    values = evaluate(u)
     top = np.broadcast_to(highest(u, duration, params), values.shape)
     return np.where(top < nyquist, values, 0.0)
+
+
+@lru_cache(maxsize=4096)
+def _aliased_fraction(generator: str, frequency: float, duty: float | None,
+                      nyquist: float) -> float:  # fmt: skip
+    """aliased_fraction, remembered: every render of a clip asks it again with the same values."""
+    params = {"frequency": frequency} if duty is None else {"frequency": frequency, "duty": duty}
+    return aliased_fraction(generator, params, nyquist)
 
 
 def aliasing_notes(project, rate: float | None = None) -> list[str]:

@@ -71,7 +71,7 @@ def _scaled(progress: Progress | None, share: float) -> Progress | None:
 def tile_layers(tile: Tile, rate: float | None = None, name: str = "value") -> Layers:
     """One tile as a single column: a sampled tile's own samples, other tiles rendered at `rate`."""
     if isinstance(tile, SampledTile) and rate in (None, tile.rate):
-        return Layers({name: tile.data}, tile.rate)
+        return Layers({name: tile.data.astype(np.float64, copy=False)}, tile.rate)
     if rate is None:
         raise FormatError(f"tile {tile.name!r} is not sampled: give a rate to export it")
     from timeline.quality import preset

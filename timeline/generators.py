@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from timeline.vibration_design import emphasis_pulse
+
 TWO_PI = 2.0 * np.pi
 
 
@@ -132,6 +134,10 @@ def _am(u, duration, carrier, modulation, depth, amplitude):
     return amplitude * envelope * np.sin(TWO_PI * carrier * u)
 
 
+def _emphasis(u, duration, amplitude, frequency):
+    return emphasis_pulse(u, amplitude, frequency)
+
+
 GENERATORS: dict[str, GeneratorSpec] = {
     s.name: s
     for s in [
@@ -194,6 +200,12 @@ GENERATORS: dict[str, GeneratorSpec] = {
             {"carrier": 175.0, "modulation": 8.0, "depth": 1.0, "amplitude": 1.0},
             _am,
             "amplitude-modulated carrier",
+        ),
+        GeneratorSpec(
+            "emphasis",
+            {"amplitude": 1.0, "frequency": 0.5},
+            _emphasis,
+            "vibration emphasis: two carrier cycles at a frequency of 0..1 (80..230 Hz)",
         ),
     ]
 }

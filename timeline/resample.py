@@ -65,10 +65,11 @@ def _catmull_rom(data: np.ndarray, x: np.ndarray) -> np.ndarray:
     n = len(data)
     i = np.clip(np.floor(x).astype(np.int64), 0, n - 2)
     t = x - i
-    p0 = data[np.clip(i - 1, 0, n - 1)]
-    p1 = data[i]
-    p2 = data[i + 1]
-    p3 = data[np.clip(i + 2, 0, n - 1)]
+    # float64 arithmetic whatever the stored precision (a float32 recording's values are exact)
+    p0 = data[np.clip(i - 1, 0, n - 1)].astype(np.float64, copy=False)
+    p1 = data[i].astype(np.float64, copy=False)
+    p2 = data[i + 1].astype(np.float64, copy=False)
+    p3 = data[np.clip(i + 2, 0, n - 1)].astype(np.float64, copy=False)
     return p1 + 0.5 * t * (
         p2 - p0 + t * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + t * (3.0 * (p1 - p2) + p3 - p0))
     )

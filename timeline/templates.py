@@ -6,6 +6,10 @@ import math
 
 from timeline.generators import GENERATORS
 from timeline.tiles import GeneratorTile, SplineTile, Tile
+from timeline.vibration_design import emphasis_length
+
+# Generators of one axis only: an emphasis is a burst of a carrier in Hz.
+_TIME_ONLY = ("emphasis",)
 
 # Per generator, parameters that make a useful starting shape on the time axis.
 _TIME_PARAMS: dict[str, dict[str, float]] = {
@@ -25,10 +29,15 @@ def template_tiles(axis: str) -> list[Tile]:
     span = 1.0 if axis == "time" else math.radians(90.0)
     tiles: list[Tile] = []
     for name in GENERATORS:
+        if axis != "time" and name in _TIME_ONLY:
+            continue
         params = _TIME_PARAMS.get(name, {}) if axis == "time" else {}
         if axis == "position" and name in ("sine", "square", "triangle", "saw"):
             params = {"frequency": 4.0 / span}
-        tiles.append(GeneratorTile(name, span, tuple(params.items()), name))
+        length = span
+        if name == "emphasis":  # as long as its pulse, so it reads back as an emphasis
+            length = emphasis_length(GENERATORS[name].defaults["frequency"])
+        tiles.append(GeneratorTile(name, length, tuple(params.items()), name))
     tiles.append(
         SplineTile(
             ((0.0, 0.0), (0.3 * span, 1.0), (0.7 * span, 1.0), (span, 0.0)), span, "pchip", "bump"

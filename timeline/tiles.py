@@ -5,7 +5,6 @@ A tile has no physical meaning of its own; a track kind gives it one (the paper'
 
 from __future__ import annotations
 
-import hashlib
 import json
 import math
 from dataclasses import dataclass, field
@@ -14,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from timeline import samples
 from timeline.band_limit import band_limited
 from timeline.errors import EditError
 from timeline.generators import GENERATORS
@@ -50,23 +50,13 @@ def _zero_outside(u: np.ndarray, values: np.ndarray, duration: float, lo: float,
     return values
 
 
-def _frozen_samples(data: object) -> bool:
-    """True for a read-only 1-D float64 array that owns its memory (a reader's fresh array):
-    nobody else can change it, so a tile can keep it instead of a copy (an hour at 44.1 kHz is
-    1.3 GB)."""
-    return (
-        isinstance(data, np.ndarray)
-        and data.dtype == np.float64
-        and data.ndim == 1
-        and data.base is None
-        and data.flags.c_contiguous
-        and not data.flags.writeable
-    )
-
-
 @dataclass(frozen=True, eq=False)
 class SampledTile:
-    """Samples at a rate (imports, merges, freehand drawing); sample k sits at k/rate."""
+    """Samples at a rate (imports, merges, freehand drawing); sample k sits at k/rate.
+
+    The samples are float64, or float32 when a reader has stored values that are all float32
+    exactly (timeline.samples); renders read them as float64 either way.
+    """
 
     data: np.ndarray
     rate: float
@@ -75,15 +65,37 @@ class SampledTile:
 
     def __post_init__(self) -> None:
         data = self.data
-        if not _frozen_samples(data):  # anything another owner could change is copied
+        if not samples.frozen(data):  # anything another owner could change is copied
             data = np.array(data, dtype=np.float64, copy=True).reshape(-1)
         if data.size == 0:
             raise EditError("a sampled tile needs at least one sample")
         if data.size > MAX_TILE_SAMPLES:
             raise EditError(f"a sampled tile of {data.size} samples is larger than supported")
-        if not np.isfinite(data).all():
-            bad = int(np.flatnonzero(~np.isfinite(data))[0])
+        bad = samples.first_non_finite(data)
+        if bad is not None:
             raise EditError(f"sample {bad} of tile {self.name!r} is not a finite number")
+        self._keep(data)
+
+    @classmethod
+    def from_checked(
+        cls, data: np.ndarray, rate: float, name: str, source: str, key: str | None = None
+    ) -> SampledTile:
+        """A tile from a frozen array (timeline.samples.frozen) already checked finite, with its
+        content key if the caller computed it while reading: an hour's samples are not scanned
+        again."""
+        if not samples.frozen(data) or data.size == 0 or data.size > MAX_TILE_SAMPLES:
+            raise EditError("a checked sampled tile needs a reader's own read-only samples")
+        tile = object.__new__(cls)
+        object.__setattr__(tile, "data", data)
+        object.__setattr__(tile, "rate", rate)
+        object.__setattr__(tile, "name", name)
+        object.__setattr__(tile, "source", source)
+        tile._keep(data)
+        if key is not None:
+            tile.__dict__["key"] = key
+        return tile
+
+    def _keep(self, data: np.ndarray) -> None:
         rate = float(self.rate)
         if not math.isfinite(rate) or rate <= 0:
             raise EditError(f"a sampled tile's rate must be a positive number, not {self.rate!r}")
@@ -102,15 +114,15 @@ class SampledTile:
 
     @cached_property
     def key(self) -> str:
-        h = hashlib.blake2b(memoryview(self.data), digest_size=16)  # no copy of the samples
-        h.update(repr(self.rate).encode())
-        return "sampled:" + h.hexdigest()
+        return samples.content_key(self.data, self.rate)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
         return sample_grid(self.data, self.rate, u0, du, n, quality)
 
     def with_name(self, name: str) -> SampledTile:
-        return SampledTile(self.data, self.rate, name, self.source)
+        """The same samples (no new scan or hash) under another name."""
+        key = self.__dict__.get("key")
+        return SampledTile.from_checked(self.data, self.rate, name, self.source, key)
 
     def __eq__(self, other: object) -> bool:
         return (
@@ -118,6 +130,7 @@ class SampledTile:
             and self.rate == other.rate
             and self.name == other.name
             and self.source == other.source
+            and self.data.dtype == other.data.dtype
             and np.array_equal(self.data, other.data)
         )
 

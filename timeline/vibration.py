@@ -6,16 +6,20 @@ The shared interface for .haptic/AHAP import and export and for `convert`:
   (seconds, 0..1 of full scale), frequency breakpoints (seconds, 0..1 normalised frequency as in
   .haptic, carrier F_MIN..F_MAX Hz), `Emphasis(time, amplitude, frequency)` accents, length in
   seconds (timeline.vibration_design).
-* `place_design(project, design, *, at=0.0, track_id=None, ...) -> Project`: the design as one
-  `VibrationTile` in the library and one clip on a drive track (the first one, created if there
-  is none, or `track_id`). The tile keeps the breakpoints; the carrier is synthesised only when
-  rendering, exactly at any rate.
+* `place_design(project, design, *, at=0.0, track_id=None, ...) -> Project`: the envelopes as
+  one `VibrationTile` in the library and one clip on a drive track (the first one, created if
+  there is none, or `track_id`), and each emphasis as a clip of its own (an "emphasis" generator
+  tile: amplitude and frequency parameters) on the drive track "Emphasis" just below it, so
+  moving, deleting or copying an emphasis is an ordinary clip edit. The tile keeps the
+  breakpoints; the carrier is synthesised only when rendering, exactly at any rate.
+  `design_placements` does the same for an importer.
 * `design_of(project, track_ids=None) -> VibrationDesign`: the sounding drive tracks read back as
   a design, in timeline seconds. Exact (the same breakpoints) while the design's clips are
   unedited; clip gain, track gain, trims and squeeze-stretch are applied to the breakpoints
   exactly (a stretch that takes the carrier outside F_MIN..F_MAX is analysed instead, below);
   fades multiply the amplitude envelope, reduced back to breakpoints within EDIT_TOLERANCE.
-  Short sine-generator clips (at most TRANSIENT_MAX s) are read as emphasis. Anything else on
+  Emphasis clips are read as emphasis at their start (their gains and a squeeze-stretch applied),
+  as are short sine-generator clips (at most TRANSIENT_MAX s). Anything else on
   the drive tracks (recordings, generators, overlapping, looped, reversed or offset clips) is
   rendered and analysed into breakpoints within the tolerances of timeline.vibration_analysis.
 """
@@ -30,6 +34,7 @@ import numpy as np
 from timeline import edits, mixer
 from timeline.errors import EditError
 from timeline.fades import fade_envelope
+from timeline.formats import Imported, Placement, TrackInfo
 from timeline.kinds import track_kind
 from timeline.model import DEFAULT_TIME_RATE, Clip, Project, Track
 from timeline.tiles import GeneratorTile
@@ -41,6 +46,7 @@ from timeline.vibration_design import (
     Emphasis,
     VibrationDesign,
     carrier_hz,
+    emphasis_length,
     normalised_frequency,
 )
 from timeline.vibration_tile import VibrationTile
@@ -48,22 +54,27 @@ from timeline.vibration_tile import VibrationTile
 __all__ = [
     "DRIVE",
     "EDIT_TOLERANCE",
+    "EMPHASIS_TRACK",
     "TRANSIENT_MAX",
     "Emphasis",
     "VibrationDesign",
     "VibrationTile",
     "design_of",
+    "design_placements",
+    "emphasis_tile",
     "place_design",
 ]
 
 DRIVE = "drive"
+EMPHASIS = "emphasis"  # the generator of emphasis clips
+EMPHASIS_TRACK = "Emphasis"  # the drive track an emphasis goes on, below its design's track
 TRANSIENT_MAX = 0.05  # s: sine-generator clips up to this long are read as emphasis
 EDIT_TOLERANCE = 0.005  # max amplitude error of breakpoints reduced after a fade
 FADE_GRID = 0.001  # s between fade samples before reduction
 
 
 def place_design(project: Project, design: VibrationDesign, **options: Any) -> Project:
-    """Put a design on a drive track as editable envelope data (options: place_design_clip's)."""
+    """Put a design on the timeline as editable data (options: place_design_clip's)."""
     return place_design_clip(project, design, **options)[0]
 
 
@@ -77,15 +88,58 @@ def place_design_clip(
     source: str = "",
     sharpness: str = "sqrt",
 ) -> tuple[Project, str]:
-    """place_design, also returning the new clip's id."""
+    """place_design, also returning the id of the envelopes' clip."""
     if track_id is None:
         track_id = next((t.id for t in project.tracks if t.kind == DRIVE), None)
         if track_id is None:
             project, track_id = edits.add_track(project, DRIVE)
     elif project.track(track_id).kind != DRIVE:
         raise EditError("a vibration design goes on a drive track")
-    project, tile_id = edits.add_tile(project, VibrationTile(design, name, source, sharpness))
-    return edits.add_clip(project, track_id, tile_id, at)
+    envelopes, accents = _split(design)
+    tile = VibrationTile(envelopes, name, source, sharpness)
+    project, tile_id = edits.add_tile(project, tile)
+    project, clip_id = edits.add_clip(project, track_id, tile_id, at)
+    if accents:
+        project, accent_track = _emphasis_track(project, track_id)
+        for e in accents:
+            project, tile_id = edits.add_tile(project, emphasis_tile(e))
+            project, _ = edits.add_clip(project, accent_track, tile_id, at + e.time)
+    return project, clip_id
+
+
+def design_placements(
+    design: VibrationDesign, name: str, source: str, sharpness: str, notes: tuple[str, ...] = ()
+) -> Imported:
+    """What a reader of a design file returns: place_design's clips as placements."""
+    envelopes, accents = _split(design)
+    placements = [Placement(VibrationTile(envelopes, name, source, sharpness), kind=DRIVE)]
+    placements += [
+        Placement(emphasis_tile(e), start=e.time, kind=DRIVE, track=EMPHASIS) for e in accents
+    ]
+    tracks = (TrackInfo(EMPHASIS, EMPHASIS_TRACK, DRIVE),) if accents else ()
+    return Imported(tuple(placements), tracks, notes)
+
+
+def emphasis_tile(e: Emphasis) -> GeneratorTile:
+    """An emphasis as a tile: its pulse, as long as the pulse, placed at the emphasis' time."""
+    params = (("amplitude", e.amplitude), ("frequency", e.frequency))
+    return GeneratorTile(EMPHASIS, emphasis_length(e.frequency), params, EMPHASIS)
+
+
+def _split(design: VibrationDesign) -> tuple[VibrationDesign, tuple[Emphasis, ...]]:
+    """The design's envelopes (same length, no emphasis) and its emphasis."""
+    envelopes = VibrationDesign(design.amplitude, design.frequency, (), design.duration)
+    return envelopes, design.emphasis
+
+
+def _emphasis_track(project: Project, track_id: str) -> tuple[Project, str]:
+    """The drive track named EMPHASIS_TRACK just below `track_id`, added there if missing."""
+    index = next(k for k, t in enumerate(project.tracks) if t.id == track_id)
+    below = project.tracks[index + 1] if index + 1 < len(project.tracks) else None
+    if below is not None and below.kind == DRIVE and below.name == EMPHASIS_TRACK:
+        return project, below.id
+    project, new = edits.add_track(project, DRIVE, EMPHASIS_TRACK)
+    return edits.move_track(project, new, index + 1), new
 
 
 def design_of(
@@ -95,16 +149,14 @@ def design_of(
     drive = [t for t in mixer.active_tracks(project, track_ids) if t.kind == DRIVE]
     if not any(t.clips for t in drive):
         raise EditError("the project has no sounding drive track with clips")
+    accents = _accents(project, drive)
     pieces: list[VibrationDesign] = []
-    accents: list[Emphasis] = []
     exact = True
     for track in drive:
         factor = _track_factor(track)
         for clip in track.clips:
             tile = project.tile(clip.tile_id)
-            accent = _as_emphasis(tile, clip, factor)
-            if accent is not None:
-                accents.append(accent)
+            if clip.id in accents:
                 continue
             piece = _clip_design(clip, tile, factor) if isinstance(tile, VibrationTile) else None
             if piece is None:
@@ -112,8 +164,22 @@ def design_of(
             else:
                 pieces.append(piece)
     if exact and not _overlapping(pieces):
-        return _joined(pieces, accents)
-    return _analysed(project, drive, rate)
+        return _joined(pieces, list(accents.values()))
+    return _analysed(project, drive, accents, rate)
+
+
+def _accents(project: Project, drive: list[Track]) -> dict[str, Emphasis]:
+    """The drive tracks' clips read as emphasis, by clip id, in time and then placing order."""
+    found = []
+    for track in drive:
+        factor = _track_factor(track)
+        for clip in track.clips:
+            accent = _as_emphasis(project.tile(clip.tile_id), clip, factor)
+            if accent is not None:
+                # ids count up as clips are added ("c9" before "c10"): two emphases at one time
+                # keep the order they were placed in
+                found.append(((accent.time, len(clip.id), clip.id), accent))
+    return {key[2]: accent for key, accent in sorted(found, key=lambda item: item[0])}
 
 
 def sharpness_convention(project: Project, track_ids: list[str] | None = None) -> str:
@@ -136,17 +202,33 @@ def _track_factor(track: Track) -> float:
 
 
 def _as_emphasis(tile, clip: Clip, factor: float) -> Emphasis | None:
-    """A short sine-generator clip read as an emphasis, or None."""
-    if not (
-        isinstance(tile, GeneratorTile)
-        and tile.generator == "sine"
-        and clip.duration <= TRANSIENT_MAX
-        and clip.offset == 0.0
-    ):
+    """An emphasis clip, or a short sine-generator clip, read as an emphasis; else None."""
+    if not isinstance(tile, GeneratorTile) or clip.offset != 0.0:
+        return None
+    if tile.generator == EMPHASIS:
+        repeated = clip.stretch_mode == "repeat" and clip.stretch != 1.0
+        if clip.reverse or clip.source_in != 0.0 or repeated:
+            return None  # no longer the one pulse an emphasis plays
+        frequency = min(1.0, max(0.0, tile.param("frequency")))
+        if clip.stretch != 1.0:
+            frequency = _stretched(frequency, clip.stretch)
+            if frequency is None:
+                return None
+        level = abs(clip.gain * clip.scale * tile.param("amplitude") * factor)
+        return Emphasis(clip.start, min(level, 1.0), frequency)
+    if tile.generator != "sine" or clip.duration > TRANSIENT_MAX:
         return None
     level = abs(clip.gain * clip.scale * tile.param("amplitude") * factor)
     hz = tile.param("frequency") / clip.stretch
     return Emphasis(clip.start, min(level, 1.0), float(normalised_frequency(hz)))
+
+
+def _stretched(f: float, stretch: float) -> float | None:
+    """The normalised frequency heard after a stretch, or None outside the carrier range."""
+    hz = float(carrier_hz(f)) / stretch
+    if not F_MIN - 1e-9 <= hz <= F_MAX + 1e-9:
+        return None
+    return float(normalised_frequency(hz))
 
 
 @dataclass(frozen=True)
@@ -161,12 +243,7 @@ class _Mapping:
 
     def frequency(self, f: float) -> float | None:
         """The normalised frequency heard after a stretch, or None outside the carrier range."""
-        if self.clip.stretch == 1.0:
-            return f
-        hz = float(carrier_hz(f)) / self.clip.stretch
-        if not F_MIN - 1e-9 <= hz <= F_MAX + 1e-9:
-            return None
-        return float(normalised_frequency(hz))
+        return f if self.clip.stretch == 1.0 else _stretched(f, self.clip.stretch)
 
     def fade(self, t: np.ndarray) -> np.ndarray:
         c = self.clip
@@ -269,24 +346,22 @@ def _joined(pieces: list[VibrationDesign], accents: list[Emphasis]) -> Vibration
         amplitude += amp
         frequency += piece.frequency
     emphasis = [e for p in pieces for e in p.emphasis] + accents
-    duration = max([p.duration for p in pieces] + [e.time + e.length for e in accents])
+    # emphasis clips read back exactly: the design lasts as long as its envelopes, or until the
+    # last emphasis starts (to its end when there are no envelopes)
+    ends = [p.duration for p in pieces] or [e.time + e.length for e in accents]
+    duration = max(ends + [e.time for e in accents])
     return VibrationDesign(tuple(amplitude), tuple(frequency), tuple(emphasis), duration)
 
 
 # --- analysis of anything else ------------------------------------------------------------------
 
 
-def _analysed(project: Project, drive: list[Track], rate: float | None) -> VibrationDesign:
+def _analysed(
+    project: Project, drive: list[Track], accents: dict[str, Emphasis], rate: float | None
+) -> VibrationDesign:
     """Render the drive tracks (emphasis clips apart) and analyse them into breakpoints."""
     rate = float(rate or project.rate or DEFAULT_TIME_RATE)
-    accents, accent_ids = [], []
-    for track in drive:
-        for clip in track.clips:
-            found = _as_emphasis(project.tile(clip.tile_id), clip, _track_factor(track))
-            if found is not None:
-                accents.append(found)
-                accent_ids.append(clip.id)
-    rest = edits.remove_clips(project, accent_ids)
+    rest = edits.remove_clips(project, list(accents))
     duration = max(c.end for t in drive for c in t.clips)
     layer = mixer.render(rest, 0.0, duration, rate, "normal", [t.id for t in drive]).get(DRIVE)
     if layer is None or not np.any(layer):
@@ -297,4 +372,4 @@ def _analysed(project: Project, drive: list[Track], rate: float | None) -> Vibra
         freq = clip_points(freq, amp[0][0], amp[-1][0])
     amp = [(t, round(v, 6)) for t, v in amp]
     freq = [(t, round(v, 6)) for t, v in freq]
-    return VibrationDesign(tuple(amp), tuple(freq), tuple(accents), duration)
+    return VibrationDesign(tuple(amp), tuple(freq), tuple(accents.values()), duration)

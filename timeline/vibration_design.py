@@ -10,7 +10,9 @@ Rendering conventions (ours; players differ): the amplitude envelope is linear b
 breakpoints and zero outside the first and last; the frequency envelope is linear between
 breakpoints and holds its end values (0.5 when there is none); an emphasis is a pulse of
 EMPHASIS_CYCLES carrier cycles at its own amplitude and frequency, full for the first cycle and
-fading linearly over the second, and the continuous carrier is ducked to zero under it.
+fading linearly over the second (`emphasis_pulse`), added to the continuous carrier the way an
+emphasis clip on the timeline adds to the clips under it (the analysis lowers the envelope under
+an emphasis instead: its ducking).
 """
 
 from __future__ import annotations
@@ -90,7 +92,23 @@ class Emphasis:
     @property
     def length(self) -> float:
         """Seconds the emphasis pulse lasts (EMPHASIS_CYCLES cycles of its carrier)."""
-        return EMPHASIS_CYCLES / (F_MIN + self.frequency * (F_MAX - F_MIN))
+        return emphasis_length(self.frequency)
+
+
+def emphasis_length(frequency: float) -> float:
+    """Seconds an emphasis of normalised frequency `frequency` lasts (EMPHASIS_CYCLES cycles)."""
+    return EMPHASIS_CYCLES / float(carrier_hz(frequency))
+
+
+def emphasis_pulse(d: np.ndarray, amplitude: float, frequency: float) -> np.ndarray:
+    """An emphasis pulse `d` seconds after it starts: EMPHASIS_CYCLES cycles of the carrier for
+    normalised `frequency`, full for the first cycle, fading linearly over the rest; 0 outside."""
+    d = np.asarray(d, dtype=np.float64)
+    hz = float(carrier_hz(frequency))
+    length = EMPHASIS_CYCLES / hz
+    fade = np.clip(EMPHASIS_CYCLES * (1.0 - d / length), 0.0, 1.0)
+    inside = (d >= 0.0) & (d < length)
+    return np.where(inside, amplitude * fade * np.sin(2.0 * np.pi * hz * d), 0.0)
 
 
 @dataclass(frozen=True)
@@ -181,12 +199,6 @@ class VibrationDesign:
         u = np.asarray(u, dtype=np.float64)
         phase = np.mod(self.cycles(u), 1.0)
         out = self.amplitude_at(u) * np.sin(2.0 * np.pi * phase)
-        pulses = [(e, u - e.time) for e in self.emphasis]
-        pulses = [(e, d, (d >= 0.0) & (d < e.length)) for e, d in pulses]
-        for _, _, inside in pulses:
-            out[inside] = 0.0  # the continuous carrier is ducked under every emphasis
-        for e, d, inside in pulses:
-            fade = np.clip(2.0 * (1.0 - d[inside] / e.length), 0.0, 1.0)
-            hz = float(carrier_hz(e.frequency))
-            out[inside] += e.amplitude * fade * np.sin(2.0 * np.pi * hz * d[inside])
+        for e in self.emphasis:
+            out += emphasis_pulse(u - e.time, e.amplitude, e.frequency)
         return np.where((u < 0.0) | (u > self.extent), 0.0, out)

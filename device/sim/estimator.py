@@ -34,3 +34,14 @@ def acceleration_response(params: KnobParams, frequency) -> np.ndarray:  # noqa:
         params, params.acceleration_cutoff, z
     )
     return chain / (1j * w) ** 2
+
+
+def acceleration_noise(params: KnobParams, sigma: float) -> float:
+    """RMS acceleration estimate (rad/s^2) for white reading noise sigma: sigma times the RMS of
+    the filter chain's gain over the band (Parseval, midpoint rule on 100,000 bins)."""
+    w = (np.arange(100_000) + 0.5) * np.pi / 100_000
+    z = np.exp(1j * w)
+    chain = _stage(params, params.velocity_cutoff, z) * _stage(
+        params, params.acceleration_cutoff, z
+    )
+    return float(sigma * np.sqrt(np.mean(np.abs(chain) ** 2)))

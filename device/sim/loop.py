@@ -12,11 +12,13 @@ block (`State`, in this order):
   (updated only when the project has a mass layer);
 * pending: the torque computed in the last period, applied in this one when the firmware has a
   one-period computation delay;
-* est_theta: the tracking observer's angle estimate (used only when it estimates; then vel and
-  acc are its velocity and acceleration estimates, observer.py);
-* est_dist, applied: reserved (0) and the motor torque applied in the last period.
+* est_theta, est_vel: an observer's angle and velocity estimates (used only when an observer
+  estimates the acceleration; then acc is its acceleration estimate, observer.py);
+* applied: the motor torque applied in the last period.
 
-Each period: read the quantised encoder, update the estimators, compute tau = d - k*theta -
+Each period: read the quantised encoder, update the velocity filter and (with a mass layer) the
+acceleration estimate (filtered difference, or an observer's prediction corrected by the
+reading), compute tau = d - k*theta -
 b*theta_dot - m*theta_ddot (coefficients per period, or T, B, M looked up linearly at the angle
 with k = 0), scale it by the watchdog's gain, clamp it (NaN becomes 0); with a computation
 delay apply the torque computed one period earlier instead (it arrives a period late, as on
@@ -60,14 +62,14 @@ def servo_loop(
     gains, computation delay (0 or 1 period), slew limit (N*m/s, 0 = none); plant: the theta
     row then the omega row of the map over z = [theta, omega, u, r, v];
     hand: push torque, push ramp, turning speed, seconds since the play started; observer: on
-    (1.0) or off (0.0), then the tracking model's 3x3 matrix A by rows and the gains L
-    (observer.py).
+    (1.0: it estimates the acceleration instead of the filter) or off (0.0), then the
+    kinematic model's 3x3 matrix A by rows and the gains L (observer.py).
     """
     rate, period, quantum, tmax, coulomb, av, aa, delay, slew = firmware
     t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = plant
     push, push_ramp, speed, elapsed = hand
     (theta, omega, r, anchor, prev_meas, vel, prev_vel, acc, pending,
-     est_theta, est_dist, applied) = state  # fmt: skip
+     est_theta, est_vel, applied) = state  # fmt: skip
     observe = observer[0] != 0.0
     a00, a01, a02, a10, a11, a12, a20, a21, a22 = observer[1:10]
     l0, l1, l2 = observer[10:13]
@@ -83,17 +85,17 @@ def servo_loop(
     d = k = b = m = 0.0
     for i in range(n):
         meas = ((theta * inv_q + 0.5) // 1.0 * quantum if quantum else theta) - anchor
-        if observe:  # predict with the model, correct with the reading (observer.py)
-            p0 = a00 * est_theta + a01 * vel + a02 * acc
-            p1 = a10 * est_theta + a11 * vel + a12 * acc
-            p2 = a20 * est_theta + a21 * vel + a22 * acc
-            miss = meas - p0
-            est_theta = p0 + l0 * miss
-            vel = p1 + l1 * miss
-            acc = p2 + l2 * miss
-        else:
-            vel += av * ((meas - prev_meas) * rate - vel)
-            if use_mass:
+        vel += av * ((meas - prev_meas) * rate - vel)
+        if use_mass:
+            if observe:  # predict with the model, correct with the reading (observer.py)
+                p0 = a00 * est_theta + a01 * est_vel + a02 * acc
+                p1 = a10 * est_theta + a11 * est_vel + a12 * acc
+                p2 = a20 * est_theta + a21 * est_vel + a22 * acc
+                miss = meas - p0
+                est_theta = p0 + l0 * miss
+                est_vel = p1 + l1 * miss
+                acc = p2 + l2 * miss
+            else:
                 acc += aa * ((vel - prev_vel) * rate - acc)
                 prev_vel = vel
         prev_meas = meas
@@ -159,7 +161,7 @@ def servo_loop(
             acc,
             pending,
             est_theta,
-            est_dist,
+            est_vel,
             applied,
         ),
     )

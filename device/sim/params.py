@@ -6,9 +6,13 @@ import math
 from dataclasses import dataclass
 from functools import cached_property
 
+import numpy as np
+
+from device.sim.observer import NOISE, kalman_gains, tracking_gains
 from timeline.devices import DeviceError, Dynamics
 
 ENCODER_QUANTUM = math.radians(0.001)  # rad per count: 0.001 deg
+ESTIMATORS = ("kalman", "filter", "tracking")  # how the firmware estimates velocity and accel.
 
 
 @dataclass(frozen=True)
@@ -27,8 +31,9 @@ class KnobParams:
     coulomb: float = 1e-3  # N*m Coulomb friction
     velocity_cutoff: float = 2_000.0  # Hz first-order low-pass on the velocity estimate; 0 = none
     acceleration_cutoff: float = 200.0  # Hz low-pass on the acceleration estimate; 0 = none
-    estimator: str = "filter"  # "filter" (differences, low-passed) or "tracking" (observer.py)
-    observer_bandwidth: float = 1000.0  # Hz: where an observer's three poles sit (observer.py)
+    estimator: str = "kalman"  # "kalman", "filter" (differences, low-passed) or "tracking"
+    observer_noise: float = NOISE  # the Kalman observer's noise, fraction of a 3-point estimate's
+    observer_bandwidth: float = 1000.0  # Hz: where the tracking observer's three poles sit
     slew: float = 0.0  # N*m/s the amplifier's output may change by at most; 0 = no limit
     delay: int = 0  # servo periods between reading the encoder and applying its torque (0 or 1)
     watchdog_timeout: float = 0.005  # s without a block before the torque starts ramping down
@@ -42,8 +47,15 @@ class KnobParams:
                 continue
             if not math.isfinite(value) or value < 0:
                 raise DeviceError(f"the knob's {name.replace('_', ' ')} must be >= 0, not {value}")
-        if self.estimator not in ("filter", "tracking"):
-            raise DeviceError(f"the knob's estimator is filter or tracking, not {self.estimator!r}")
+        if self.estimator not in ESTIMATORS:
+            raise DeviceError(
+                f"the knob's estimator is {', '.join(ESTIMATORS)}, not {self.estimator!r}"
+            )
+        if not 0.0 < self.observer_noise < 1.0:
+            raise DeviceError(
+                "the knob's observer noise is a fraction between 0 and 1, "
+                f"not {self.observer_noise}"
+            )
         if self.delay not in (0, 1):
             raise DeviceError(f"the knob's delay is 0 or 1 servo period, not {self.delay}")
         if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
@@ -53,15 +65,24 @@ class KnobParams:
     def dynamics(self) -> Dynamics:
         """The rotor and servo loop as the design checks see them (made once: flags use it per
         block)."""
-        tracking = self.observer_bandwidth if self.estimator == "tracking" else 0.0
+        gains = self.observer_gains
         return Dynamics(
             self.inertia,
             self.viscous,
             int(self.delay),
             self.velocity_cutoff,
             self.acceleration_cutoff,
-            tracking,
+            () if gains is None else tuple(float(g) for g in gains),
         )
+
+    @cached_property
+    def observer_gains(self) -> np.ndarray | None:
+        """The observer's gain L (observer.py), or None when the filters estimate."""
+        if self.estimator == "kalman":
+            return kalman_gains(self.period, self.observer_noise)
+        if self.estimator == "tracking":
+            return tracking_gains(self.period, self.observer_bandwidth)
+        return None
 
     @property
     def period(self) -> float:

@@ -1,13 +1,13 @@
 """The simulated knob stepped servo period by servo period, the way its firmware would run.
 
 Each period: read the encoder (quantised, relative to the anchor), estimate velocity (backward
-difference, low-passed) and, only when a mass layer exists, acceleration (difference of the
-velocity estimate, low-passed); compute tau = d - k*theta - b*theta_dot - m*theta_ddot (or the
-position tables' T - B*theta_dot - M*theta_ddot); replace NaN by 0 and clamp to the maximum;
-hold it over the period while the mechanics (rotor, viscous and Coulomb friction, the hand)
-advance by a precomputed linear map (plant.py); that loop is compiled (loop.py). State persists
-between blocks, so a USB emulation can feed blocks as they arrive and call `run_idle` when none
-arrive (watchdog).
+difference, low-passed) and, only when a mass layer exists, acceleration (by default a Kalman
+observer, observer.py; or the difference of the velocity estimate, low-passed); compute tau =
+d - k*theta - b*theta_dot - m*theta_ddot (or the position tables' T - B*theta_dot - M*theta_ddot);
+replace NaN by 0 and clamp to the maximum; hold it over the period while the mechanics (rotor,
+viscous and Coulomb friction, the hand) advance by a precomputed linear map (plant.py); that
+loop is compiled (loop.py). State persists between blocks, so a USB emulation can feed blocks as
+they arrive and call `run_idle` when none arrive (watchdog).
 """
 
 from __future__ import annotations
@@ -65,9 +65,8 @@ class KnobPhysics:
         self._firmware = _floats(
             p.rate, p.period, p.quantum, p.max_torque, p.coulomb, *filters, p.delay, p.slew
         )  # the loop's firmware tuple (loop.py), made once; index 5 is the velocity filter gain
-        self._observer = (
-            observer_tuple(p.period, p.observer_bandwidth) if p.estimator == "tracking" else OFF
-        )
+        gains = p.observer_gains
+        self._observer = OFF if gains is None else observer_tuple(p.period, gains)
 
     # --- set-up ---------------------------------------------------------------------------
 
@@ -99,7 +98,7 @@ class KnobPhysics:
         self.prev_vel = 0.0
         self.acc = 0.0
         self.pending = 0.0  # the torque computed last period (applied now, with a delay)
-        self.observed = (0.0, 0.0, 0.0)  # the observer's angle, (reserved), last motor torque
+        self.observed = (0.0, 0.0, 0.0)  # the observer's angle and velocity, last motor torque
         self.idle = 0  # samples since the last block arrived
         # what the watchdog keeps rendering: the last coefficients (rows d, k, b(, m)) or program
         self.last: np.ndarray | PositionProgram | None = None

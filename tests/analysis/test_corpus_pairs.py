@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from timeline.bench.convert import pair_agreement, pair_fit
+from timeline.bench.convert import pair_agreement, pair_fit, pair_where_made
 
 
 def test_agreement_with_lofelt_studio(audio_pairs: Path) -> None:
@@ -40,3 +40,18 @@ def test_lofelt_made_its_breakpoints_with_the_same_amplitude_analysis(audio_pair
     assert abs(20 * np.log10(fits["Beep2"].gain) + 4.31) < 0.01 and fits["Beep2"].error < 1e-4
     # drawn by hand: most of these designs' breakpoints fall between the sound's samples
     assert fits["Button1"].hand_placed == 7 and fits["CameraShutter1"].hand_placed == 17
+
+
+def test_where_lofelt_s_analysis_made_its_design_ours_agrees(audio_pairs: Path) -> None:
+    """Scored only on the segments and emphasis Lofelt's analysis made (not drawn by hand)."""
+    found = {p.stem: pair_where_made(p) for p in sorted(audio_pairs.glob("*.wav"))}
+    mae = np.nanmedian([w.scored.amplitude_mae for w in found.values()])
+    leveled = np.nanmedian([w.with_gain.amplitude_mae for w in found.values()])
+    assert mae <= 0.028 and leveled <= 0.0092  # against 0.066 over whole designs
+    assert found["Button1"].scored.share == 0.0  # drawn by hand from end to end
+    assert found["Beep2"].scored.share == 1.0 and found["Beep2"].with_gain.amplitude_mae < 0.002
+    # Glass1: one of its 26 emphasis came from the analysis, and ours finds that one
+    assert (found["Glass1"].made_emphasis, found["Glass1"].emphasis) == (1, 26)
+    assert found["Glass1"].onset_f1 == 1.0
+    f1 = np.mean([w.onset_f1 for w in found.values() if w.made_emphasis])
+    assert f1 >= 0.61  # against 0.457 over all emphasis of all ten

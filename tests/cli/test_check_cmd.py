@@ -39,7 +39,7 @@ def _crossing_everything():
     p, _ = edits.add_clip(p, spring, level, 1.0, gain=3.0)  # 3 N*m/rad > 2
     p, _ = edits.add_clip(p, damper, level, 1.2, gain=3000.0)  # 0.3 N*m*s/rad > 0.2
     p, _ = edits.add_clip(p, damper, level, 1.4, gain=-0.1)
-    p, _ = edits.add_clip(p, mass, level, 1.6, gain=30.0)  # 3e-4 kg*m^2 > 1.77e-4
+    p, _ = edits.add_clip(p, mass, level, 1.6, gain=30.0)  # 3e-4 kg*m^2 > 2.88e-5
     p, _ = edits.add_clip(p, mass, level, 1.8, gain=-2.0)  # J + m < 0
     p = edits.save_variant(p, "A")
     return edits.save_variant(p, "A again")

@@ -53,19 +53,25 @@ def test_project_keeps_the_sound_and_an_editable_design(tmp_path: Path, bursts: 
     out = tmp_path / "bursts.htl"
     assert main(["convert", str(bursts), "-o", str(out)]) == 0
     project = projectfile.load(out)
-    assert sorted(t.kind for t in project.tracks) == ["audio", "drive"]
+    assert sorted(t.kind for t in project.tracks) == ["audio", "drive", "drive"]
     sound, _ = sf.read(bursts)
     np.testing.assert_allclose(render_sound(project, 0.0, 1.2, RATE), sound, atol=1e-6)
     expected = design_of_analysis(analyse_file(bursts))
     assert design_of(project) == expected  # unedited: the analysis, breakpoint for breakpoint
+    # each emphasis is a clip of its own on the Emphasis track, under the envelopes' track
+    accents = next(t for t in project.tracks if t.name == "Emphasis")
+    assert [c.start for c in accents.clips] == [e.time for e in expected.emphasis]
+    assert len(expected.emphasis) == 1  # the strongest of the three bursts, at 50 % sensitivity
 
 
 def test_sound_lands_where_the_designer_drops_it(bursts: Path) -> None:
     first = sound_to_project(bursts)
     again = sound_to_project(bursts, project=first, at=2.0, keep_sound=False)
     drive = [t for t in again.tracks if t.kind == "drive"]
-    starts = sorted(c.start for t in drive for c in t.clips)
-    assert starts == [0.0, 2.0]
+    assert [t.name for t in drive] == ["Drive 1", "Emphasis"]  # the second reuses both
+    assert [c.start for c in drive[0].clips] == [0.0, 2.0]
+    accents = [c.start for c in drive[1].clips]
+    assert accents == [accents[0], accents[0] + 2.0]
 
 
 def test_bad_inputs_are_one_sentence(tmp_path: Path, bursts: Path, capsys) -> None:

@@ -72,14 +72,23 @@ def test_rendered_values_are_the_envelope_times_the_carrier_at_any_rate():
     assert np.max(np.abs(y[::3][: len(x)] - x)) < 1e-9
 
 
-def test_an_emphasis_ducks_the_carrier_and_rings_for_two_cycles():
+def test_an_emphasis_is_a_clip_of_its_own_that_adds_two_cycles_to_the_carrier():
     design = VibrationDesign(
         ((0.0, 0.3), (0.1, 0.3)), ((0.0, 0.5),), (Emphasis(0.05, 0.9, 1.0),), 0.1
     )
-    x = _drive(_project(design))
-    pulse = x[500 : 500 + int(2 / F_MAX * RATE)]
-    assert np.max(np.abs(pulse)) == pytest.approx(0.9, abs=0.01)  # not 0.3 + 0.9
-    assert np.max(np.abs(x[:490])) == pytest.approx(0.3, abs=0.01)
+    p = _project(design)
+    assert [t.name for t in p.tracks] == ["Drive 1", "Emphasis"]
+    (accent,) = p.tracks[1].clips
+    assert (accent.start, accent.duration) == (0.05, 2 / F_MAX)
+    x = _drive(p)
+    envelope_only = _drive(edits.set_track(p, p.tracks[1].id, mute=True))
+    pulse = (x - envelope_only)[500:]
+    n = int(round(2 / F_MAX * RATE))  # two cycles of 230 Hz: 87 samples
+    # full for the first cycle, fading linearly over the second, silent after
+    assert np.max(np.abs(pulse[: n // 2])) == pytest.approx(0.9, abs=0.01)
+    assert np.max(np.abs(pulse[n // 2 + 22 : n])) < 0.5 * 0.9
+    assert not np.any(pulse[n + 1 :])
+    assert np.max(np.abs(envelope_only)) == pytest.approx(0.3, abs=0.01)
 
 
 def test_gain_trim_and_stretch_are_applied_to_the_breakpoints_exactly():
@@ -87,7 +96,7 @@ def test_gain_trim_and_stretch_are_applied_to_the_breakpoints_exactly():
     clip = p.tracks[0].clips[0].id
     half = design_of(edits.set_clip_gain(p, clip, 0.5))
     assert [v for _, v in half.amplitude] == [v * 0.5 for _, v in DESIGN.amplitude]
-    assert [e.amplitude for e in half.emphasis] == [0.5, 0.3]
+    assert [e.amplitude for e in half.emphasis] == [1.0, 0.6]  # clips of their own
     trimmed = design_of(edits.trim_clip(p, clip, 0.1, 0.8))
     assert trimmed.amplitude[0] == (0.1, 0.5) and trimmed.amplitude[-1] == pytest.approx((0.8, 0.2))
     slow = design_of(edits.stretch_clip(p, clip, 1.1))
@@ -97,6 +106,26 @@ def test_gain_trim_and_stretch_are_applied_to_the_breakpoints_exactly():
     # slower still, 95 Hz would fall below the carrier range: the layer is analysed instead
     slower = design_of(edits.stretch_clip(p, clip, 1.5))
     assert slower.frequency[0][1] == 0.0 and len(slower.amplitude) > len(DESIGN.amplitude)
+
+
+def test_emphasis_clip_edits_are_read_back_as_the_edited_emphasis():
+    p = _project()
+    strong, weak = (c.id for c in p.tracks[1].clips)  # both at 0.5 s
+    p = edits.move_clip(p, weak, 0.6)
+    p = edits.set_clip_gain(p, strong, 0.5)
+    p = edits.set_track(p, p.tracks[1].id, gain=0.8)
+    read = [(e.time, e.amplitude, e.frequency) for e in design_of(p).emphasis]
+    assert read == [(0.5, pytest.approx(0.4), 0.7), (0.6, pytest.approx(0.48), 0.2)]
+    # squeezed to 1/1.1: 80 + 150 * 0.7 = 185 Hz plays at 203.5 Hz
+    squeezed = design_of(edits.stretch_clip(p, strong, 1 / 1.1))
+    (fast,) = [e for e in squeezed.emphasis if e.time == 0.5]
+    assert fast.frequency == pytest.approx((185 * 1.1 - F_MIN) / (F_MAX - F_MIN))
+    p = edits.remove_clip(p, weak)
+    p, copy = edits.duplicate_clip(p, strong, 0.9)
+    assert [e.time for e in design_of(p).emphasis] == [0.5, 0.9]
+    # reversed, it is no longer an emphasis: the layer is analysed, the other stays exact
+    reversed_ = design_of(edits.reverse_clip(p, copy))
+    assert [e.time for e in reversed_.emphasis] == [0.5] and reversed_.amplitude != DESIGN.amplitude
 
 
 def test_a_fade_is_reduced_to_breakpoints_within_the_stated_bound():
@@ -157,7 +186,9 @@ def test_the_project_file_keeps_the_design_and_refuses_a_damaged_one(tmp_path):
     assert design_of(projectfile.load(path)) == DESIGN.shifted(0.25)
     doc = json.loads(path.read_text())
     tile = next(t for t in doc["project"]["tiles"].values() if t["type"] == "vibration")
-    assert tile["emphasis"] == [[0.5, 1.0, 0.7], [0.5, 0.6, 0.2]]
+    assert tile["emphasis"] == []  # each emphasis is a clip of its own
+    accents = [t["params"] for t in doc["project"]["tiles"].values() if t["type"] == "generator"]
+    assert accents == [{"amplitude": 1.0, "frequency": 0.7}, {"amplitude": 0.6, "frequency": 0.2}]
     tile["amplitude"][1] = [0.2, 7.0]
     path.write_text(json.dumps(doc))
     with pytest.raises(ProjectFileError, match="between 0 and 1"):
@@ -193,7 +224,7 @@ def test_any_design_survives_placing_saving_and_loading(design, at):
     assert design_of(q) == design_of(p)
     if at == 0.0:
         assert design_of(q) == design
-    assert isinstance(next(iter(q.tiles.values())), VibrationTile)
+    assert any(isinstance(t, VibrationTile) for t in q.tiles.values())
 
 
 coarse_times = st.lists(st.floats(0.0, 5.0).map(lambda t: round(t, 3)), max_size=12).map(sorted)
@@ -235,4 +266,5 @@ def test_gain_trim_and_fades_read_back_as_the_edited_envelope(design, gain, at, 
         np.abs(t[:, None] - (at + np.array([[b[0] for b in design.amplitude]]))) > 1e-6, 1
     )
     assert np.max(np.abs(read.amplitude_at(t) - expected)[away]) <= EDIT_TOLERANCE + 1e-9
-    assert all(c.start <= e.time < c.end for e in read.emphasis)
+    # the emphasis clips are clips of their own: the envelopes' edits leave them as they were
+    assert read.emphasis == design.shifted(at).emphasis

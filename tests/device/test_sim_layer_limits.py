@@ -1,7 +1,8 @@
 """Damping and virtual-mass limits: computed from the servo loop, flagged at the boundary, felt.
 
-The sim's filters stay on (its defaults); quantisation and Coulomb friction are off, so the knob
-is the linear loop the limits are computed on.
+The sim's estimators stay on (its defaults: the velocity filter, the Kalman observer of the
+acceleration); quantisation and Coulomb friction are off, so the knob is the linear loop the
+limits are computed on.
 """
 
 from __future__ import annotations
@@ -122,12 +123,13 @@ def test_the_delay_holds_the_torque_one_period() -> None:
     np.testing.assert_array_equal(b, np.concatenate([[0.0], a[:-1]]))
 
 
+@pytest.mark.parametrize("estimator", ["tracking", "kalman"])
 @pytest.mark.parametrize("layer", ["b", "m"])
 @pytest.mark.parametrize("fraction", [0.95, 1.05])
-def test_with_the_tracking_observer_the_limits_follow_it(layer: str, fraction: float) -> None:
-    p = KnobParams(**LINEAR, estimator="tracking")
+def test_with_an_observer_the_limits_follow_it(estimator: str, layer: str, fraction: float) -> None:
+    p = KnobParams(**LINEAR, estimator=estimator)
     dyn, period = p.dynamics, p.period
-    assert dyn.observer_bandwidth == 1000.0
+    assert dyn.observer_gains == tuple(p.observer_gains)
     limit = servo.damping_limit(dyn, period) if layer == "b" else servo.mass_limits(dyn, period)[1]
     knob = KnobPhysics(p)
     knob.start(Hand("free"))

@@ -58,3 +58,16 @@ def test_the_samples_are_referenced_and_the_levels_are_compact():
     assert level_bytes < data.nbytes / 7
     lo, hi = pyramid.columns(0, len(data), 10)
     assert lo.min() == pytest.approx(-1.0, abs=1e-6) and hi.max() == pytest.approx(1.0, abs=1e-6)
+
+
+def test_the_first_level_is_built_in_chunks_from_float32_samples(monkeypatch):
+    from timeline.gui import peaks
+
+    monkeypatch.setattr(peaks, "CHUNK", 4 * peaks.BASE)
+    n = 12 * peaks.BASE + 37  # three chunks and a partial last block
+    data = np.random.default_rng(3).standard_normal(n).astype(np.float32)
+    block, lo, hi = PeakPyramid(data).levels[0]
+    assert block == peaks.BASE and lo.dtype == np.float32
+    starts = range(0, n, block)
+    np.testing.assert_array_equal(lo, [data[a : a + block].min() for a in starts])
+    np.testing.assert_array_equal(hi, [data[a : a + block].max() for a in starts])

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -53,14 +54,18 @@ def test_menu_command_imports_the_design_and_the_sound(window, qtbot, monkeypatc
     QTest.keyClick(win, Qt.Key.Key_H, CTRL_SHIFT)
     qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
     project = win.doc.project
-    assert len(project.tracks) == tracks_before + 1 and project.tracks[-1].kind == "audio"
+    assert len(project.tracks) == tracks_before + 2 and project.tracks[-1].kind == "audio"
+    # the emphasis: clips of their own on a drive track just under the design's
+    assert (project.tracks[1].kind, project.tracks[1].name) == ("drive", "Emphasis")
+    expected = design_of_analysis(analyse_file(bursts))
+    assert [c.start for c in project.tracks[1].clips] == [e.time for e in expected.emphasis]
     sound, _ = soundfile.read(bursts)
     np.testing.assert_allclose(render_sound(project, 0.0, 1.2, RATE), sound, atol=1e-6)
     # the design is an editable envelope tile on the first drive track, at the cursor (0 s)
     placed = [c for c in project.tracks[0].clips if c.start == 0.0]
     tiles = [project.tile(c.tile_id) for c in placed]
     designs = [t.design for t in tiles if isinstance(t, VibrationTile)]
-    assert designs == [design_of_analysis(analyse_file(bursts))]
+    assert designs == [dataclasses.replace(expected, emphasis=())]
     assert win.sound_import.dock.isVisible()
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
     assert len(win.doc.project.tracks) == tracks_before  # one step took both away

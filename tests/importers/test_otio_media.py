@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -45,14 +46,22 @@ def test_named_after_the_file_with_media_beside_it(tmp_path):
     assert wav.name == "knock-Drive_1.wav"
     samples, rate = sf.read(wav)
     assert rate == project.rate
-    drive = mixer.render(project, 0.0, 0.4, project.rate)["drive"]  # the drive track ends at 0.4 s
+    # the drive track ends at 0.4 s; its emphasis is on the Emphasis track below it
+    drive = mixer.render(project, 0.0, 0.4, project.rate, "normal", [project.tracks[0].id])["drive"]
     assert len(samples) == len(drive) and np.max(np.abs(samples - drive)) < 1e-6  # float32 WAV
     assert drive_clip.source_range.start_time.to_seconds() == 0.1
     haptic = tmp_path / refs["haptic"].target_url
+    shifted = design.shifted(0.1)
+    envelopes = dataclasses.replace(shifted, emphasis=())
     assert design_of(importing.import_file(edits.new_project(templates=False), haptic)[0]) == (
-        design.shifted(0.1)
+        envelopes
     )
-    spring = next(iter(timeline.tracks[1].find_clips()))
+    accent = next(iter(timeline.tracks[1].find_clips()))  # the Emphasis track's .haptic
+    haptic = tmp_path / accent.media_references()["haptic"].target_url
+    assert haptic.name == "knock-Emphasis.haptic"
+    alone = design_of(importing.import_file(edits.new_project(templates=False), haptic)[0])
+    assert alone.emphasis == shifted.emphasis
+    spring = next(iter(timeline.tracks[2].find_clips()))
     assert spring.media_reference.target_url == "knock-Spring.wav"
     assert "haptic" not in spring.media_references()
     # and it reads back exactly

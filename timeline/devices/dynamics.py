@@ -28,9 +28,10 @@ class Dynamics:
     inertia J (kg*m^2) and physical viscous damping b (N*m*s/rad) of the rotor and knob; `delay`
     whole servo periods between reading the encoder and applying the torque computed from it;
     the first-order low-pass cut-offs (Hz, 0 = none) on the backward-difference velocity and on
-    the acceleration estimate (the difference of the velocity estimate); or, with
-    `observer_bandwidth` above 0, a kinematic tracking observer of angle, velocity and
-    acceleration with all three poles at that bandwidth.
+    the acceleration estimate (the difference of the velocity estimate); or, when
+    `observer_gains` holds a gain L = (l0, l1, l2), an observer of angle, velocity and
+    acceleration: each period it predicts them with acceleration held constant and corrects the
+    prediction by L times the reading's miss (a Kalman or tracking observer).
     """
 
     inertia: float
@@ -38,7 +39,7 @@ class Dynamics:
     delay: int = 0
     velocity_cutoff: float = 0.0
     acceleration_cutoff: float = 0.0
-    observer_bandwidth: float = 0.0  # Hz; above 0, a tracking observer estimates instead
+    observer_gains: tuple[float, ...] = ()  # L of an observer that estimates instead, or ()
 
     def __post_init__(self) -> None:
         _check(
@@ -48,8 +49,13 @@ class Dynamics:
             delay=self.delay,
             velocity_cutoff=self.velocity_cutoff,
             acceleration_cutoff=self.acceleration_cutoff,
-            observer_bandwidth=self.observer_bandwidth,
         )
+        if len(self.observer_gains) not in (0, 3) or not all(
+            math.isfinite(g) for g in self.observer_gains
+        ):
+            raise DeviceError(
+                f"a device's observer gains are three numbers, not {self.observer_gains}"
+            )
         if self.inertia <= 0:
             raise DeviceError(f"a device's inertia must be positive, not {self.inertia}")
         if int(self.delay) != self.delay:

@@ -18,6 +18,7 @@ from .geometry import CLIP_MARGIN, Geometry, axis_text, gain_text
 
 EDGE_PX = 6.0
 HANDLE_PX = 9.0
+GRAB_PX = 10.0  # a clip drawn narrower than this (an emphasis, a tap) is grabbed this wide
 SHAPE_LABEL_PX = 60.0  # fades this long show their shape's name
 VALUE_RANGE = 1.0  # the lane shows -1 .. 1 of the tile's full scale
 
@@ -100,7 +101,12 @@ class ClipItem(QGraphicsItem):
     # --- geometry and hit zones -----------------------------------------------------------
 
     def boundingRect(self) -> QRectF:
-        return QRectF(-1, -1, self._w + 2, self._h + 2)
+        pad = self._pad()
+        return QRectF(-1 - pad, -1, self._w + 2 + 2 * pad, self._h + 2)
+
+    def _pad(self) -> float:
+        """How far a narrow clip's grab area reaches beyond each of its ends."""
+        return max(0.0, (GRAB_PX - self._w) / 2)
 
     def _value_ys(self, values: np.ndarray) -> np.ndarray:
         """Item ys of many clip values (value_y on an array)."""
@@ -124,7 +130,12 @@ class ClipItem(QGraphicsItem):
         return QPointF(self._w - self.geometry.x(clip.fade_out.length), 0.0)
 
     def zone(self, pos: QPointF) -> str:
-        """What a press at an item position grabs: fade-in, fade-out, left, right or body."""
+        """What a press at an item position grabs: fade-in, fade-out, left, right or body.
+
+        A clip narrower than GRAB_PX is too small to aim at its edges or fades: it is all body,
+        to move (zoom in to trim it)."""
+        if self._w < GRAB_PX:
+            return "body"
         for which in ("in", "out"):
             h = self.fade_handle(which)
             if abs(pos.x() - h.x()) <= HANDLE_PX and pos.y() <= HANDLE_PX + 2:
@@ -151,7 +162,10 @@ class ClipItem(QGraphicsItem):
         painter.drawRoundedRect(QRectF(0, 0, w, h), 4, 4)
         exposed = option.exposedRect.intersected(QRectF(0, 0, w, h))
         self._paint_wave(painter, exposed)
-        self._paint_fades(painter)
+        if w < GRAB_PX:
+            self._paint_marker(painter)
+        else:
+            self._paint_fades(painter)
         if clip.pivot != 0.0 or self.selected:
             painter.setPen(QPen(QColor("#444444"), 1, Qt.PenStyle.DashLine))
             y = self.value_y(clip.pivot)
@@ -191,6 +205,15 @@ class ClipItem(QGraphicsItem):
         painter.setPen(QPen(QColor(0, 0, 0, 60), 1))
         painter.drawLine(
             QPointF(exposed.left(), self.value_y(0)), QPointF(exposed.right(), self.value_y(0))
+        )
+
+    def _paint_marker(self, painter: QPainter) -> None:
+        """A flag over a narrow clip, as wide as its grab area, so it can be seen and grabbed."""
+        pad, w = self._pad(), self._w
+        painter.setPen(QPen(self.colour.darker(130), 1))
+        painter.setBrush(QBrush(self.colour))
+        painter.drawPolygon(
+            QPolygonF([QPointF(-pad, 0), QPointF(w + pad, 0), QPointF(w / 2, GRAB_PX)])
         )
 
     def _paint_fades(self, painter: QPainter) -> None:

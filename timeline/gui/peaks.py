@@ -3,8 +3,9 @@
 Qt-free. Level 0 holds min/max per BASE samples, each further level per FACTOR times more (the
 Audacity summary idea); a query picks the coarsest level that still has two blocks per column.
 The samples themselves are referenced, not copied, and the levels are float32 (an hour at
-44.1 kHz adds 2 x 40 MB for the first level and 1/7 of that for the rest), and a query reduces
-only the blocks its columns cover, so a paint costs the same at every zoom.
+44.1 kHz adds 2 x 10 MB for the first level and 1/7 of that for the rest), built in chunks
+without a full-size temporary, and a query reduces only the blocks its columns cover (at most
+2 x BASE samples per column), so a paint costs the same at every zoom.
 """
 
 from __future__ import annotations
@@ -13,8 +14,9 @@ from collections import OrderedDict
 
 import numpy as np
 
-BASE = 16
+BASE = 64
 FACTOR = 8
+CHUNK = BASE << 14  # samples summarised at a time while building the first level
 
 
 class PeakPyramid:
@@ -23,14 +25,15 @@ class PeakPyramid:
     def __init__(self, data: np.ndarray) -> None:
         self.data = np.asarray(data)
         self.levels: list[tuple[int, np.ndarray, np.ndarray]] = []  # (block size, mins, maxs)
-        lo = hi = self.data
-        block = 1
+        if len(self.data) <= 2 * BASE:
+            return
+        lo, hi = _first_level(self.data)
+        block = BASE
+        self.levels.append((block, lo, hi))
         while len(lo) > 2 * BASE:
-            step = BASE if block == 1 else FACTOR
-            edges = np.arange(0, len(lo), step)
-            lo = np.minimum.reduceat(lo, edges).astype(np.float32, copy=False)
-            hi = np.maximum.reduceat(hi, edges).astype(np.float32, copy=False)
-            block *= step
+            edges = np.arange(0, len(lo), FACTOR)
+            lo, hi = np.minimum.reduceat(lo, edges), np.maximum.reduceat(hi, edges)
+            block *= FACTOR
             self.levels.append((block, lo, hi))
 
     def __len__(self) -> int:
@@ -56,6 +59,22 @@ class PeakPyramid:
         # arrays at the last column's end so a query never reduces past what it shows
         stop = int(ends[-1])
         return np.minimum.reduceat(lo[:stop], starts), np.maximum.reduceat(hi[:stop], starts)
+
+
+def _first_level(data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Min and max per BASE samples as float32, made CHUNK samples at a time (no full-size
+    temporary: an hour of samples is 0.6-1.3 GB)."""
+    count = -(-len(data) // BASE)
+    lo = np.empty(count, dtype=np.float32)
+    hi = np.empty(count, dtype=np.float32)
+    edges = np.arange(0, CHUNK, BASE)
+    for first in range(0, len(data), CHUNK):
+        chunk = data[first : first + CHUNK]
+        starts = edges[: -(-len(chunk) // BASE)]  # the last block may be partial
+        at = first // BASE
+        lo[at : at + len(starts)] = np.minimum.reduceat(chunk, starts)
+        hi[at : at + len(starts)] = np.maximum.reduceat(chunk, starts)
+    return lo, hi
 
 
 class PyramidCache:

@@ -1,13 +1,14 @@
 """Stability limits of a sampled knob's servo loop: stiffness, damping and virtual mass.
 
 The loop a kinesthetic device runs each period T: read the encoder, estimate velocity (backward
-difference, first-order low-pass) and acceleration (difference of the velocity estimate,
-low-passed), compute tau = -k*theta - b*theta_dot - m*theta_ddot, apply it `delay` periods later
-and hold it over a period on a rotor of inertia J and viscous damping b_dev. With an ideal sensor
-and no friction that loop is linear, so its period-to-period map is a matrix and it is stable
-exactly when every eigenvalue lies inside the unit circle (`spectral_radius` < 1). The limits
-below are found on that map, with the knob free (no hand): a hand adds inertia and damping and
-steadies the knob, so the free knob is the case to design for.
+difference, first-order low-pass) and acceleration (the difference of the velocity estimate,
+low-passed, or an observer: predict with the acceleration held, correct with the reading, as the
+device declares), compute tau = -k*theta - b*theta_dot - m*theta_ddot, apply it `delay` periods
+later and hold it over a period on a rotor of inertia J and viscous damping b_dev. With an ideal
+sensor and no friction that loop is linear, so its period-to-period map is a matrix and it is
+stable exactly when every eigenvalue lies inside the unit circle (`spectral_radius` < 1). The
+limits below are found on that map, with the knob free (no hand): a hand adds inertia and
+damping and steadies the knob, so the free knob is the case to design for.
 
 * stiffness: passivity (Colgate & Schenkel 1997): b_dev > K*T/2 + |B|; with a computation delay
   of D periods the held torque is older by D*T and the bound becomes b_dev > K*T*(1/2 + D) + |B|
@@ -44,78 +45,58 @@ def smoothing(cutoff: float, rate: float) -> float:
     return 1.0 if cutoff <= 0 else 1.0 - math.exp(-2.0 * math.pi * cutoff / rate)
 
 
-def _tracking_rows(dynamics: Dynamics, period: float, e: np.ndarray):  # noqa: ANN202
-    """The tracking observer's corrected state [angle, velocity, acceleration] as rows over the
-    loop's state [theta, omega, o0, o1, o2, ...] (the same observer as the firmware's)."""
+def _plant(dynamics: Dynamics, period: float) -> np.ndarray:
+    """The rotor's exact zero-order-hold map [theta, omega, u] -> [theta, omega] over a period."""
+    a = np.zeros((3, 3))
+    a[0, 1], a[1, 1], a[1, 2] = 1.0, -dynamics.damping / dynamics.inertia, 1.0 / dynamics.inertia
+    return expm(a * period)[:2]
+
+
+def _velocity_rows(dynamics: Dynamics, period: float, e: np.ndarray):  # noqa: ANN202
+    """The next [meas, vel] over the loop's state [theta, omega, meas, vel, ...]: the backward
+    difference of the reading through its low-pass."""
+    rate = 1.0 / period
+    av = smoothing(dynamics.velocity_cutoff, rate)
+    return [e[0], (1.0 - av) * e[3] + av * rate * (e[0] - e[2])]
+
+
+def _filter_rows(dynamics: Dynamics, period: float, e: np.ndarray, vel: np.ndarray):  # noqa: ANN202
+    """The acceleration filter's next [prev_vel, acc] over the state [..., prev_vel, acc, ...]
+    at 4 and 5 (the difference of the velocity estimate `vel`, low-passed)."""
+    aa = smoothing(dynamics.acceleration_cutoff, 1.0 / period)
+    return [vel, (1.0 - aa) * e[5] + aa * (vel - e[4]) / period]
+
+
+def _observer_rows(dynamics: Dynamics, period: float, e: np.ndarray, vel: np.ndarray):  # noqa: ANN202, ARG001
+    """The observer's next [angle, velocity, acceleration] over the state [..., o0, o1, o2, ...]
+    at 4 to 6: predict with the acceleration held, correct by L times the reading's miss, as the
+    firmware does."""
     t = period
     a = np.array([[1.0, t, t * t / 2.0], [0.0, 1.0, t], [0.0, 0.0, 1.0]])
-    c = np.array([1.0, 0.0, 0.0])
-    pole = math.exp(-2.0 * math.pi * dynamics.observer_bandwidth * period)
-    rows = np.array([c @ np.linalg.matrix_power(a, i) for i in (1, 2, 3)])
-    shifted = a - pole * np.eye(3)
-    gains = shifted @ shifted @ shifted @ np.linalg.solve(rows, np.array([0.0, 0.0, 1.0]))
-    observed = e[2:5]
-    predicted = a @ observed
+    predicted = a @ e[4:7]
     miss = e[0] - predicted[0]
-    return [predicted[i] + gains[i] * miss for i in range(3)]
+    return [predicted[i] + dynamics.observer_gains[i] * miss for i in range(3)]
 
 
 def loop_matrix(
     dynamics: Dynamics, period: float, k: float = 0.0, b: float = 0.0, m: float = 0.0
 ) -> np.ndarray:
-    """The free knob's closed loop over one period, state [theta, omega, meas, vel, prev_vel,
-    acc, tau(n-1) ... tau(n-D)]."""
-    j, bd, delay = dynamics.inertia, dynamics.damping, int(dynamics.delay)
-    if dynamics.observer_bandwidth > 0:
-        return _tracking_matrix(dynamics, period, k, b, m)
-    rate = 1.0 / period
-    av = smoothing(dynamics.velocity_cutoff, rate)
-    aa = smoothing(dynamics.acceleration_cutoff, rate)
-    size = 6 + delay
-    a = np.zeros((3, 3))
-    a[0, 1], a[1, 1], a[1, 2] = 1.0, -bd / j, 1.0 / j
-    plant = expm(a * period)  # zero-order hold: [theta, omega, u] -> next
-    e = np.eye(size)
-    theta, omega, meas, vel, prev_vel, acc = e[:6]
-    new_vel = (1.0 - av) * vel + av * rate * (theta - meas)
-    new_acc = (1.0 - aa) * acc + aa * rate * (new_vel - prev_vel)
-    tau = -k * theta - b * new_vel - m * new_acc
-    applied = e[5 + delay] if delay else tau
-    rows = [
-        plant[0, 0] * theta + plant[0, 1] * omega + plant[0, 2] * applied,
-        plant[1, 0] * theta + plant[1, 1] * omega + plant[1, 2] * applied,
-        theta,
-        new_vel,
-        new_vel,
-        new_acc,
-    ]
-    if delay:
-        rows.append(tau)
-        rows.extend(e[6 : 5 + delay])
-    return np.array(rows)
-
-
-def _tracking_matrix(dynamics: Dynamics, period: float, k: float, b: float, m: float) -> np.ndarray:
-    """The loop with the tracking observer: state [theta, omega, o0, o1, o2, tau delays]."""
-    j, bd, delay = dynamics.inertia, dynamics.damping, int(dynamics.delay)
-    a = np.zeros((3, 3))
-    a[0, 1], a[1, 1], a[1, 2] = 1.0, -bd / j, 1.0 / j
-    plant = expm(a * period)
-    size = 5 + delay
-    e = np.eye(size)
-    o0, o1, o2 = _tracking_rows(dynamics, period, e)
-    tau = -k * e[0] - b * o1 - m * o2
-    applied = e[4 + delay] if delay else tau
-    rows = [
-        plant[0, 0] * e[0] + plant[0, 1] * e[1] + plant[0, 2] * applied,
-        plant[1, 0] * e[0] + plant[1, 1] * e[1] + plant[1, 2] * applied,
-        o0,
-        o1,
-        o2,
-    ]
-    if delay:
-        rows.append(tau)
-        rows.extend(e[5 : 4 + delay])
+    """The free knob's closed loop over one period: state [theta, omega, meas, vel, the
+    acceleration estimator's state (filter: prev_vel, acc; an observer: its angle, velocity and
+    acceleration), tau(n-1) ... tau(n-D)]."""
+    observed = bool(dynamics.observer_gains)
+    first_delay = 7 if observed else 6  # index of tau(n-1) in the state
+    delay = int(dynamics.delay)
+    e = np.eye(first_delay + delay)
+    velocity = _velocity_rows(dynamics, period, e)
+    acceleration = (_observer_rows if observed else _filter_rows)(dynamics, period, e, velocity[1])
+    tau = -k * e[0] - b * velocity[1] - m * acceleration[-1]
+    applied = e[first_delay + delay - 1] if delay else tau
+    plant = _plant(dynamics, period)
+    rows = [p[0] * e[0] + p[1] * e[1] + p[2] * applied for p in plant]
+    rows += velocity + acceleration
+    if delay:  # tau(n) is remembered, the older ones shift by one
+        rows += [tau, *e[first_delay : first_delay + delay - 1]]
     return np.array(rows)
 
 

@@ -1,0 +1,79 @@
+"""Where an audio reader puts the samples it decodes: float32 when that is exact, hashed as read.
+
+Blocks arrive as float64. They are stored as float32 while every value is a float32 exactly (the
+same float64 values come back: 16- and 24-bit PCM, float files, a stereo mix of PCM), and
+as float64 from the first block that is not. Each stored block is hashed for the tile's content
+key on a second thread while the next one is decoded (hashlib and libsndfile both release the
+GIL), so the key of an hour costs no extra wall time on an idle core and nobody hashes the
+recording again when it is drawn.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from timeline.memory import require
+from timeline.samples import ContentKey, exact_in_float32
+
+# Subtypes whose samples are integers of at most 24 bits (or float32) scaled by a power of two:
+# every value read is a float32 exactly. The mean of two channels of the integer ones is too: a
+# sum of two 24-bit values is at most 2**24 in magnitude, which float32's 24-bit significand
+# holds, and halving it is exact.
+_INTEGERS = frozenset({"PCM_S8", "PCM_U8", "PCM_16", "PCM_24", "ULAW", "ALAW"})
+_EXACT_ALONE = _INTEGERS | {"FLOAT"}
+# Subtypes whose samples are rarely float32 values: stored as float64 from the start.
+_WIDE = frozenset({"DOUBLE", "PCM_32"})
+
+
+def known_exact(subtype: str, mixed_channels: int) -> bool:
+    """True if every sample (or mean of `mixed_channels` channels; 1 = one channel kept) of this
+    subtype is a float32 exactly, so no block needs checking."""
+    if mixed_channels == 1:
+        return subtype in _EXACT_ALONE
+    return mixed_channels == 2 and subtype in _INTEGERS
+
+
+class SampleStore:
+    """The samples read so far, growing as blocks arrive; end with finish() or abandon()."""
+
+    def __init__(self, subtype: str, mixed_channels: int, capacity: int, name: str) -> None:
+        self.out = np.empty(capacity, dtype=np.float64 if subtype in _WIDE else np.float32)
+        self.size = 0
+        self.name = name
+        self._checked = self.out.dtype == np.float32 and not known_exact(subtype, mixed_channels)
+        self._key = ContentKey(self.out.dtype)
+        self._hashing = ThreadPoolExecutor(1, thread_name_prefix="sample-key")
+
+    def append(self, part: np.ndarray, total: int) -> None:
+        """Store the next float64 samples; `total` is the most the file can hold."""
+        if self._checked and self.out.dtype == np.float32 and not exact_in_float32(part):
+            self._moved(np.float64, self.out.size)
+        if self.size + len(part) > self.out.size:
+            self._moved(self.out.dtype, min(total, 2 * (self.size + len(part))))
+        stored = self.out[self.size : self.size + len(part)]
+        stored[:] = part
+        self._hashing.submit(self._key.update, stored)  # stored is never written again
+        self.size += len(part)
+
+    def _moved(self, dtype: type, size: int) -> None:
+        """Copy what is stored into a new array (wider or larger), within the memory available."""
+        require(self.out.nbytes + size * np.dtype(dtype).itemsize, f"reading {self.name}")
+        bigger = np.empty(size, dtype=dtype)
+        bigger[: self.size] = self.out[: self.size]
+        if bigger.dtype != self.out.dtype:  # hash again from the start, in the new precision
+            self._key = ContentKey(bigger.dtype)
+            self._hashing.submit(self._key.update, bigger[: self.size])
+        self.out = bigger
+
+    def finish(self, rate: float) -> tuple[np.ndarray, str]:
+        """The stored samples, read-only (the tile keeps this array rather than a copy), and
+        their content key at `rate`; call once the read has filled the array."""
+        self._hashing.shutdown(wait=True)
+        self.out.setflags(write=False)
+        return self.out, self._key.key(rate)
+
+    def abandon(self) -> None:
+        """Stop hashing (the read failed or was cancelled): blocks not yet hashed are dropped."""
+        self._hashing.shutdown(wait=True, cancel_futures=True)
