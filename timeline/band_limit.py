@@ -15,6 +15,7 @@ limit). `aliasing_notes` names the clips whose rendering departs audibly from th
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from functools import lru_cache
 
 import numpy as np
 
@@ -50,23 +51,45 @@ def band_limited(
     duration: float,
     params: Mapping[str, float],
     evaluate: Callable[[np.ndarray], np.ndarray],
+    bounds: tuple[float, float] | None = None,
 ) -> np.ndarray:
     """The shape at positions u (sampled at a spacing with this Nyquist frequency) with content
-    at or above Nyquist removed; `evaluate` gives the ideal shape, zero outside its span."""
+    at or above Nyquist removed; `evaluate` gives the ideal shape, zero outside its span.
+    `bounds`, when the caller knows them, are u's least and greatest values."""
     if generator in HARMONIC:
         if abs(params["frequency"]) >= nyquist:
             return np.zeros(np.shape(u))
-        if aliased_fraction(generator, params, nyquist) <= ALIAS_LIMIT:
+        folded = _aliased_fraction(generator, params["frequency"], params.get("duty"), nyquist)
+        if folded <= ALIAS_LIMIT:
             return evaluate(u)
         with np.errstate(all="ignore"):
             values = synthesise(generator, u, params, nyquist)
+        if bounds is not None and bounds[0] >= 0.0 and bounds[1] <= duration:
+            return values  # all of u inside the span: nothing to zero
         return np.where((u < 0) | (u > duration), 0.0, values)
-    values = evaluate(u)
     highest = _HIGHEST.get(generator)
     if highest is None:
-        return values
+        return evaluate(u)
+    # Each shape's highest frequency is constant or monotone in u (a chirp's |f0 + (f1-f0)u/d|
+    # or f0 (f1/f0)^(u/d)), so its largest value over u is at the ends of u's range.
+    u = np.asarray(u, dtype=np.float64)
+    if u.size == 0:
+        return evaluate(u)
+    ends = np.array([u.min(), u.max()] if bounds is None else bounds)
+    top = np.broadcast_to(highest(ends, duration, params), ends.shape)
+    if top.max() < nyquist:
+        return evaluate(u)  # nothing reaches Nyquist: no mask, the same values
+    values = evaluate(u)
     top = np.broadcast_to(highest(u, duration, params), values.shape)
     return np.where(top < nyquist, values, 0.0)
+
+
+@lru_cache(maxsize=4096)
+def _aliased_fraction(generator: str, frequency: float, duty: float | None,
+                      nyquist: float) -> float:  # fmt: skip
+    """aliased_fraction, remembered: every render of a clip asks it again with the same values."""
+    params = {"frequency": frequency} if duty is None else {"frequency": frequency, "duty": duty}
+    return aliased_fraction(generator, params, nyquist)
 
 
 def aliasing_notes(project, rate: float | None = None) -> list[str]:

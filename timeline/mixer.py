@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 import sys
 from collections import OrderedDict
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import astuple, dataclass
 from itertools import chain
 from typing import NamedTuple
@@ -38,6 +38,10 @@ from timeline.tiles import Tile
 BLOCK = 32768  # output samples per block: the unit of re-summing after an edit
 MAX_SAMPLES = 2**31  # one render call; longer renders go through render_chunks
 PEAK_BYTES_PER_SAMPLE = 48  # measured peak memory of one layer's render, per output sample
+# A window whose clips cover this many samples is summed by the compiled loop of
+# timeline.render_kernels (loading numba and the loops costs ~0.5 s CPU once per process, under a
+# tenth of such a render); smaller renders (every example) keep numpy and never load numba.
+COMPILED_SAMPLES = 50_000_000
 
 
 class _LRU:
@@ -398,9 +402,10 @@ class Mixer:
         out = window.buffer
         with np.errstate(over="ignore", invalid="ignore"):  # overflow is reported as one error
             if len(blocks) == -(-grid.n // BLOCK):
-                self._sum_all(out, window.placed, grid)
+                self._sum_all(out, window, grid)
                 return
             members = _members(window, blocks, grid.n)
+            adder = _adder(window.starts, window.ends)
             scratch = np.empty(BLOCK)
             values: dict[tuple, np.ndarray] = {}  # shapes in use, dropped after their last block
             for b in blocks:
@@ -411,21 +416,23 @@ class Mixer:
                     x = values.get(p.shape)
                     if x is None:
                         x = values[p.shape] = self._shape_values(p, grid)
-                    _add(out, x, p, max(p.i0, lo), min(p.i1, hi), scratch)
+                    a, z = max(p.i0, lo), min(p.i1, hi)
+                    adder(out[a:z], x[a - p.i0 : z - p.i0], p.weight, scratch)
                     if p.i1 <= hi:
                         values.pop(p.shape, None)
                 _check_finite(acc, grid, lo)
         self.stats.block_sums += len(blocks)
 
-    def _sum_all(self, out: np.ndarray, placed: list[_Placed], grid: _Grid) -> None:
+    def _sum_all(self, out: np.ndarray, window: _Window, grid: _Grid) -> None:
         """Sum every clip into the whole buffer: per sample the same order as block by block."""
         out.fill(0.0)
         scratch = np.empty(BLOCK)
-        for p in placed:
+        adder = _adder(window.starts, window.ends)
+        for p in window.placed:
             x, a = self._shape_values(p, grid), p.i0
             while a < p.i1:  # in the same pieces as _sum adds, so the sums are bit-identical
                 z = min(p.i1, (a // BLOCK + 1) * BLOCK)
-                _add(out, x, p, a, z, scratch)
+                adder(out[a:z], x[a - p.i0 : z - p.i0], p.weight, scratch)
                 a = z
         _check_finite(out, grid, 0)
         self.stats.block_sums += -(-grid.n // BLOCK)
@@ -441,16 +448,27 @@ class Mixer:
         return values
 
 
-def _add(out: np.ndarray, x: np.ndarray, p: _Placed, a: int, z: int, scratch: np.ndarray) -> None:
-    """out[a:z] += p.weight * x[a - p.i0 : z - p.i0], in a scratch piece of at most one block.
+def _numpy_add(out: np.ndarray, x: np.ndarray, weight: float, scratch: np.ndarray) -> None:
+    """out += weight * x through a scratch piece (x at most one block long): numpy, two passes."""
+    tmp = scratch[: len(x)]
+    np.multiply(x, weight, out=tmp)
+    np.add(out, tmp, out=out)
 
-    Plain numpy on one thread: the product is rounded, then added (the same two roundings
-    whichever path sums a sample, so re-sums are bit-identical to fresh renders), and the cost
-    does not depend on how many BLAS threads a loaded machine runs.
+
+def _adder(starts: np.ndarray, ends: np.ndarray) -> Callable:
+    """How to add a clip's piece, (out, x, weight, scratch) -> None.
+
+    Both ways round the product, then add it (two roundings, on one thread, whatever BLAS
+    threads a loaded machine runs), so sums are bit-identical whichever is used; the compiled
+    one-pass loop is taken once numba is loaded, or when the clips cover enough samples to
+    repay loading it.
     """
-    tmp = scratch[: z - a]
-    np.multiply(x[a - p.i0 : z - p.i0], p.weight, out=tmp)
-    np.add(out[a:z], tmp, out=out[a:z])
+    small = int((ends - starts).sum()) < COMPILED_SAMPLES
+    if small and "timeline.render_kernels" not in sys.modules:
+        return _numpy_add
+    from timeline.render_kernels import scaled_add
+
+    return lambda out, x, weight, scratch: scaled_add(out, x, weight)
 
 
 def _check_finite(values: np.ndarray, grid: _Grid, first: int) -> None:

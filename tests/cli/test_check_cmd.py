@@ -93,3 +93,29 @@ def test_check_plot_draws_rendered_against_designed(tmp_path: Path, capsys) -> N
     assert cli.main(args) == 0
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
     assert "plot ->" in capsys.readouterr().err
+
+
+def test_check_hand_sets_what_the_knob_makes_felt(tmp_path: Path, capsys) -> None:
+    # 0.5 mNm at 250 Hz: a pinch (no finger mass, 15 mm) moves the skin 0.30 um, over the
+    # 0.1 um threshold; a grasp (0.554 kg at 20 mm) only 0.017 um
+    p = edits.new_project("time")
+    p, drive = edits.add_track(p, "drive", "drive")
+    p = edits.set_track(p, drive, full_scale=5e-4)
+    p, buzz = edits.add_tile(p, generator("sine", 0.2, "buzz", frequency=250.0))
+    p, _ = edits.add_clip(p, drive, buzz, 0.0)
+    path = tmp_path / "buzz.htl"
+    save(p, path)
+    kinds = {}
+    for hand in ("pinch", "grasp", "grasp-turn:45"):
+        assert cli.main(["check", str(path), "--hand", hand, "--json"]) in (0, 3)
+        report = json.loads(capsys.readouterr().out)
+        assert report["hand"] == hand
+        kinds[hand] = {f["kind"] for f in report["findings"]}
+    assert "below-detection" not in kinds["pinch"]
+    assert "below-detection" in kinds["grasp"]
+    assert "below-detection" in kinds["grasp-turn:45"]
+    assert cli.main(["check", str(path), "--hand", "free"]) == 0
+    assert "detection not checked" in capsys.readouterr().err
+    assert cli.main(["check", str(path), "--hand", "claw"]) == 1
+    err = capsys.readouterr().err
+    assert "cannot read hand 'claw'" in err and err.count("\n") == 1

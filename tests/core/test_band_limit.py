@@ -1,9 +1,11 @@
 """Generators above the output's Nyquist frequency are removed, not aliased; the rest is exact."""
 
 import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from timeline import edits
-from timeline.band_limit import aliasing_notes
+from timeline.band_limit import _HIGHEST, aliasing_notes, band_limited
 from timeline.cli import main as cli
 from timeline.mixer import render
 from timeline.projectfile import save
@@ -154,3 +156,38 @@ def test_export_names_clips_changed_at_its_rate(tmp_path, capsys):
     assert "warning: clip" in err and "square wave at or above 5000 Hz were removed" in err
     assert cli.main(["export", str(path), "-o", str(out), "--rate", "48000"]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.sampled_from(["sine", "chirp", "am", "detents"]),
+    st.floats(-4000.0, 4000.0),
+    st.floats(1.0, 9000.0),
+    st.booleans(),
+    st.floats(-0.5, 2.5),
+    st.floats(1e-4, 3.0),
+)
+def test_the_band_limit_skips_its_mask_only_where_nothing_reaches_nyquist(
+    name, f0, f1, exponential, u0, span
+):
+    """Testing the ends of u's range gives exactly the per-sample mask, every sample's bits."""
+    params = {
+        "sine": {"frequency": f0},
+        "chirp": {
+            "f0": abs(f0) if exponential else f0,
+            "f1": f1,
+            "exponential": float(exponential),
+        },
+        "am": {"carrier": f0, "modulation": f1 / 100.0},
+        "detents": {"count": f1 / 10.0},
+    }[name]
+    if name == "chirp" and exponential and params["f0"] == 0.0:
+        params["f0"] = 1.0
+    tile = generator(name, 2.0, **params)
+    u = np.linspace(u0, u0 + span, 997)
+    p = dict(tile.params)
+    top = np.broadcast_to(_HIGHEST[name](u, tile.duration, p), u.shape)
+    reference = np.where(top < 2_500.0, tile.evaluate(u), 0.0)
+    assert np.array_equal(
+        band_limited(name, u, 2_500.0, tile.duration, p, tile.evaluate), reference
+    )

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import example, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from scipy.interpolate import CubicSpline, PchipInterpolator
 
-from timeline.splines import natural_cubic, pchip
+from timeline.splines import SAMPLES_PER_PIECE, natural_cubic, pchip
 from timeline.tiles import spline
 
 TOLERANCE = 1e-11  # of the curve's magnitude: its value range, its largest value, at least 1
@@ -66,3 +66,27 @@ def test_a_spline_tile_evaluates_through_its_points_without_scipy_objects():
     values = tile.evaluate(np.array([0.0, 0.3, 0.7, 1.0, 1.1, 1.3, -0.1]))
     np.testing.assert_allclose(values, [0.0, 1.0, -0.5, 0.0, 0.0, 0.0, 0.0], atol=1e-15)
     assert type(tile._curve).__module__ == "timeline.splines"
+
+
+@settings(max_examples=120, deadline=None)
+@given(
+    st.lists(
+        st.tuples(st.floats(0, 100), st.floats(-1e6, 1e6)),
+        min_size=3,
+        max_size=12,
+        unique_by=lambda p: p[0],
+    ),
+    st.floats(-10, 110),
+    st.floats(-120, 120),
+    st.sampled_from(["natural", "pchip"]),
+)
+def test_a_grid_is_evaluated_piece_by_piece_with_the_same_bits(points, u0, span, method):
+    """Ascending and descending grids (reversed clips) past both ends and across every knot."""
+    x, y = np.array(sorted(points)).T
+    assume(np.diff(x).min() > 1e-6)  # as in test_random_control_points_match_scipy
+    curve = natural_cubic(x, y) if method == "natural" else pchip(x, y)
+    u = u0 + span * np.arange(SAMPLES_PER_PIECE * len(x)) / (SAMPLES_PER_PIECE * len(x))
+    i = np.clip(np.searchsorted(x, u, side="right") - 1, 0, len(x) - 2)  # a search per sample
+    s = u - x[i]
+    per_sample = ((curve.d[i] * s + curve.c[i]) * s + curve.b[i]) * s + curve.a[i]
+    assert np.isfinite(per_sample).all() and np.array_equal(curve(u), per_sample)

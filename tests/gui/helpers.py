@@ -45,3 +45,12 @@ def send_drop(win, mime: QMimeData, at: QPoint) -> None:
     QApplication.sendEvent(vp, QDragEnterEvent(at, copy, mime, nobutton, NO))
     QApplication.sendEvent(vp, QDragMoveEvent(at, copy, mime, nobutton, NO))
     QApplication.sendEvent(vp, QDropEvent(QPointF(at), copy, mime, nobutton, NO, QEvent.Type.Drop))
+
+
+def choose(qtbot, box, text: str) -> None:
+    """Open a combo box with the mouse and pick `text` by keys, as a person does."""
+    qtbot.mouseClick(box, Qt.MouseButton.LeftButton)
+    qtbot.waitUntil(lambda: box.view().isVisible(), timeout=5_000)
+    while box.view().currentIndex().data() != text:
+        qtbot.keyClick(box.view(), Qt.Key.Key_Down)
+    qtbot.keyClick(box.view(), Qt.Key.Key_Return)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from PySide6.QtCore import Qt
 
-from tests.gui.helpers import click, clip_point
+from tests.gui.helpers import choose, click, clip_point
 from timeline import edits, generator
 
 
@@ -60,3 +60,31 @@ def test_a_design_too_long_to_check_live_says_so_once(window, qtbot, monkeypatch
     win.findings.schedule()
     qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
     assert len(win.messages.history) == shown and not win.findings.shades
+
+
+def test_a_buzz_a_grasp_cannot_feel_is_shaded_when_the_grasp_is_chosen(window, qtbot) -> None:
+    # 1 mNm at 250 Hz: the default hold moves the fingertip 0.20 um, over the 0.1 um threshold;
+    # a grasp (0.554 kg at 20 mm on the knob) only 0.035 um
+    win = window
+    p = win.doc.project
+    p = edits.set_track(p, win.ids["t2"], full_scale=1e-3)
+    p, buzz = edits.add_tile(p, generator("sine", 0.2, "buzz", frequency=250.0))
+    p, _ = edits.add_clip(p, win.ids["t2"], buzz, 2.7)  # after the sine and the ramp
+    win.doc.replace("a faint buzz", p)
+    qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
+
+    def buzz_unfelt() -> bool:
+        return any(
+            f.kind == "below-detection" and f.start == pytest.approx(2.7, abs=0.03)
+            for f in win.findings.report.findings
+        )
+
+    assert not buzz_unfelt()
+    box = win.transport.hand_model
+    choose(qtbot, box, "grasp")
+    assert win.player.hand.model == "grasp"
+    qtbot.waitUntil(lambda: win.findings.settled and buzz_unfelt(), timeout=20_000)
+    shaded = [s for s in win.findings.shades if s.kind == "below-detection"]
+    lanes = {win.view.geometry.lane_at(s.rect().center().y()) for s in shaded}
+    assert lanes == {0, 1}  # the drive lanes, whose sum is the drive
+    win.grab().save("/tmp/findings_grasp.png")

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from PySide6.QtCore import QSettings, Qt
 
+from tests.gui.helpers import choose
 from timeline import edits
 from timeline.gui.lane_scale import level_y
 from timeline.gui.rendered_overlay import SETTING, RenderedCurve
@@ -102,11 +103,7 @@ def test_choosing_another_hand_renders_the_knob_again(loud_window, qtbot) -> Non
     qtbot.waitUntil(lambda: win.findings.settled and bool(curves(win)), timeout=30_000)
     assert win.findings.traces[0].label.endswith("hand hold")
     box = win.transport.hand
-    qtbot.mouseClick(box, Qt.MouseButton.LeftButton)  # opens the list: pick "free" by keys
-    qtbot.waitUntil(lambda: box.view().isVisible(), timeout=5_000)
-    while box.view().currentIndex().data() != "free":
-        qtbot.keyClick(box.view(), Qt.Key.Key_Down)
-    qtbot.keyClick(box.view(), Qt.Key.Key_Return)
+    choose(qtbot, box, "free")
     assert win.player.hand.mode == "free"
     qtbot.waitUntil(
         lambda: win.findings.settled and win.findings.traces[0].label.endswith("hand free"),

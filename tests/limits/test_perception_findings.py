@@ -7,6 +7,7 @@ import pytest
 
 from tests.limits.designs import KNOB, tone
 from timeline import edits, generator
+from timeline.devices import Hand
 from timeline.limits.actuators import actuator
 from timeline.limits.check import check
 from timeline.limits.skin import displacement_per_unit
@@ -29,6 +30,38 @@ def test_a_knob_buzz_at_the_detection_threshold(
     assert bool(hits) == below
     if below:
         assert hits[0].value / hits[0].limit == pytest.approx(scale, rel=0.03)
+
+
+@pytest.mark.parametrize("name", ["hold", "pinch", "grasp", "grasp-turn:45", "push:20"])
+@pytest.mark.parametrize(("scale", "below"), [(0.95, True), (1.05, False)])
+def test_the_hand_on_the_knob_sets_the_detection_threshold(
+    name: str, scale: float, below: bool
+) -> None:
+    hand = Hand.parse(name)
+    per_unit = displacement_per_unit(KNOB, None, np.array([250.0]), hand)[0]
+    amplitude = detection_threshold(250.0) / per_unit
+    report = check(tone(250.0, scale * amplitude, seconds=0.2), KNOB, hand=hand)
+    assert bool(found(report, "below-detection")) == below
+
+
+def test_a_light_pinch_feels_what_a_heavy_grasp_does_not() -> None:
+    f = np.array([250.0])
+    pinch, grasp = (
+        displacement_per_unit(KNOB, None, f, Hand.parse(n))[0] for n in ("pinch", "grasp")
+    )
+    # pinch: no finger inertia, 15 mm: 0.015 / |0.129 - 1e-5 w^2 + j w 3.9e-4| = 6.1e-4 m per N*m
+    assert pinch == pytest.approx(6.09e-4, rel=0.01)
+    # grasp: 0.554 kg at 20 mm adds 2.2e-4 kg*m^2: 0.020 / |0.054 - 2.3e-4 w^2 + ...| = 3.5e-5
+    assert grasp == pytest.approx(3.50e-5, rel=0.01)
+    buzz = tone(250.0, 2.0 * detection_threshold(250.0) / grasp * (grasp / pinch) ** 0.5)
+    assert not found(check(buzz, KNOB, hand=Hand.parse("pinch")), "below-detection")
+    assert found(check(buzz, KNOB, hand=Hand.parse("grasp")), "below-detection")
+
+
+def test_a_hand_that_lets_go_feels_nothing_and_the_check_says_so() -> None:
+    report = check(tone(250.0, 1e-9), KNOB, hand=Hand.parse("free"))
+    assert not found(report, "below-detection")
+    assert "the hand lets go of the knob (free): detection not checked" in report.notes
 
 
 def test_the_hand_is_most_sensitive_near_250_hz() -> None:

@@ -17,7 +17,7 @@ from timeline.limits.actuators import PROFILES
 from timeline.quality import DEFAULT_QUALITY, PRESETS
 
 if TYPE_CHECKING:  # the limits, devices and mixer load when a design is checked, not for --help
-    from timeline.devices import DeviceInfo
+    from timeline.devices import DeviceInfo, Hand
     from timeline.limits.check import Report
 
 FOUND = 3
@@ -33,7 +33,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "or voice-coil:LOW-HIGH (default: the device's own)")  # fmt: skip
     p.add_argument("--json", action="store_true", help="print the findings as JSON")
     p.add_argument("--plot", help="write rendered against designed to this .png")
-    p.add_argument("--hand", default="hold", help="the hand for --plot on a knob (as in play)")
+    p.add_argument("--hand", default="hold",
+                   help="the hand on a knob, as in play: hold (default), free, turn:DEG_PER_S, "
+                   "push:MNM, pinch, grasp, or a named hand and a mode (grasp-turn:90); its grip "
+                   "sets how far the drive moves the skin and what --plot renders")  # fmt: skip
     p.add_argument("--quality", default=DEFAULT_QUALITY, choices=list(PRESETS))
     p.set_defaults(func=run)
 
@@ -55,12 +58,13 @@ def device_limits(info: DeviceInfo) -> dict[str, float]:
     }  # fmt: skip
 
 
-def as_json(path: str, info: DeviceInfo, report: Report) -> str:
+def as_json(path: str, info: DeviceInfo, report: Report, hand: Hand) -> str:
     device = asdict(info)
     return json.dumps(
         {
             "project": path,
             "device": device,
+            "hand": str(hand),
             "limits": device_limits(info),
             "findings": [f.as_dict() for f in report.findings],
             "notes": list(report.notes),
@@ -76,13 +80,14 @@ def run(args: argparse.Namespace) -> int:
     from timeline.projectfile import load
 
     project = load(args.project)
+    hand = Hand.parse(args.hand)
     chosen = actuator(args.actuator) if args.actuator else None
     options = dict(parse_option(text) for text in args.device_option)
     with open_device(args.device, **options) as device:
         info = device.info
-    report = check(project, info, chosen, args.quality)
+    report = check(project, info, chosen, args.quality, hand)
     if args.json:
-        print(as_json(args.project, info, report))
+        print(as_json(args.project, info, report, hand))
     else:
         name = Path(args.project).name
         count = len(report.findings)
@@ -94,7 +99,6 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         from timeline.limits.plot import plot_rendered
 
-        hand = Hand.parse(args.hand)
         plot_rendered(project, info, chosen or info.actuator, report, args.plot, hand, args.quality)
         print(f"plot -> {args.plot}", file=sys.stderr)
     return FOUND if report.findings else 0

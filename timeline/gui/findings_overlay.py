@@ -123,9 +123,9 @@ class FindingsOverlay(QObject):
             self.rendered.clear()
 
     def hand_changed(self) -> None:
-        """The transport's hand changed: a knob's rendering depends on it."""
-        if self.rendered.shown:
-            self.schedule()
+        """The transport's hand changed: what a knob's drive makes felt, and its rendering,
+        depend on it."""
+        self.schedule()
 
     def device_info(self) -> DeviceInfo:
         """What the player's device declares (asked once per device)."""
@@ -147,8 +147,7 @@ class FindingsOverlay(QObject):
                 f"the design is too long to check while editing ({project.duration:.0f} s); "
                 "run haptic-timeline check on it"), version)  # fmt: skip
             return
-        hand = self.player.hand if self.rendered.shown else None
-        future = self._pool.submit(_check, project, info, hand)
+        future = self._pool.submit(_check, project, info, self.player.hand, self.rendered.shown)
         future.add_done_callback(lambda f: self.ready.emit(f.result(), version))
 
     def _show(self, result: Checked | HapticTimelineError, version: int) -> None:
@@ -201,13 +200,15 @@ class FindingsOverlay(QObject):
         self._pool.shutdown(wait=False, cancel_futures=True)
 
 
-def _check(project: Project, info: DeviceInfo, hand: Hand | None) -> Checked | HapticTimelineError:
-    """The findings and, given the hand to render a knob with, what the device will output."""
+def _check(
+    project: Project, info: DeviceInfo, hand: Hand, render: bool
+) -> Checked | HapticTimelineError:
+    """The findings with this hand on a knob and, if `render`, what the device will output."""
     try:
-        report = check(project, info)
+        report = check(project, info, hand=hand)
     except HapticTimelineError as exc:
         return exc
-    if hand is None or project.axis != "time":
+    if not render or project.axis != "time":
         return Checked(report)
     from timeline.limits.plot import traces
 

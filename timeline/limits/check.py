@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from timeline.devices import Actuator, DeviceInfo
+from timeline.devices import Actuator, DeviceInfo, Hand
 from timeline.limits import device_checks, perception_checks
 from timeline.limits.design import sample
 from timeline.limits.findings import Finding
@@ -29,12 +29,15 @@ def check(
     info: DeviceInfo,
     actuator: Actuator | None = None,
     quality: str = "normal",
+    hand: Hand | None = None,
 ) -> Report:
     """All findings for a project played on a device (and, for vibration, an actuator).
 
-    `actuator` defaults to the one the device declares.
+    `actuator` defaults to the one the device declares; `hand` (default `hold`) is the hand on a
+    knob, whose grip sets how far its drive moves the skin.
     """
     actuator = actuator or info.actuator
+    hand = hand or Hand("hold")
     design = sample(project, info.rate, quality)
     notes = []
     if info.kind == "kinesthetic" and info.dynamics is None:
@@ -44,6 +47,9 @@ def check(
         notes.append("no actuator profile: band and detection not checked (use --actuator)")
     if info.slew is None:
         notes.append(f"{info.name} declares no slew limit")
+    knob_drive = "d" in design.terms and info.kind == "kinesthetic" and actuator is None
+    if knob_drive and project.axis == "time" and not hand.touches:
+        notes.append("the hand lets go of the knob (free): detection not checked")
     if project.axis == "position":
         notes.append("position project: gaps, detection and slew depend on the turning speed "
                      "and are checked on time projects only")  # fmt: skip
@@ -57,7 +63,7 @@ def check(
         *device_checks.stability(design, info),
         *device_checks.slew(design, info),
         *device_checks.actuator_band(design, info, actuator),
-        *perception_checks.below_detection(design, info, actuator),
+        *perception_checks.below_detection(design, info, actuator, hand),
         *perception_checks.short_gaps(design, info),
         *(
             perception_checks.sub_jnd_clips(project, info, design.rate, quality)

@@ -7,7 +7,7 @@ from itertools import combinations
 
 import numpy as np
 
-from timeline.devices import Actuator, DeviceInfo
+from timeline.devices import Actuator, DeviceInfo, Hand
 from timeline.limits.design import Sampled, sample, variant_project
 from timeline.limits.findings import Finding, spans
 from timeline.limits.frames import frames
@@ -25,17 +25,19 @@ from timeline.model import Project
 SILENT = 1e-9  # of the device's maximum output: below this a drive sample is silence
 
 
-def below_detection(design: Sampled, info: DeviceInfo, actuator: Actuator | None) -> list[Finding]:
+def below_detection(
+    design: Sampled, info: DeviceInfo, actuator: Actuator | None, hand: Hand | None = None
+) -> list[Finding]:
     """Whole events (drive between silences) whose every frame is below Verrillo's threshold.
 
     A fade that ends below the threshold is felt until it does, so only events that are never
-    felt are findings.
+    felt are findings. On a knob the skin moves as the hand's grip lets it (skin.py).
     """
     d = design.terms.get("d")
     if d is None or design.axis != "time":
         return []
     fr = frames(d, design.rate, design.start)
-    per_unit = displacement_per_unit(info, actuator, fr.frequency)
+    per_unit = displacement_per_unit(info, actuator, fr.frequency, hand)
     if per_unit is None:
         return []
     moved = fr.peak * per_unit  # peak skin displacement

@@ -3,9 +3,11 @@ numbers to the detection threshold.
 
 * A vibrotactile actuator shakes the hand with its peak acceleration (g at full scale) times its
   frequency response; displacement = acceleration / (2*pi*f)^2.
-* A knob turns against its rotor and the hand's grip: angle = torque / |K_h - (J + J_h)*w^2 +
-  j*w*(b + B_h)|, and the fingertip on its rim moves radius * angle. The grip is the default
-  hand's (timeline.devices.Hand) and the radius KNOB_RADIUS, a typical control knob.
+* A knob turns against its rotor and the hand: angle = torque / |K_h - (J + J_h)*w^2 +
+  j*w*(b + B_h)|, and the fingertip on its rim moves radius * angle. K_h, B_h and J_h are the
+  given hand's (timeline.devices.Hand: `check --hand`, the editor's transport; a pushing hand
+  has no grip, only its inertia); the radius is its model's (pinch 15 mm, grasp 20 mm) or
+  KNOB_RADIUS, a typical control knob. A hand that lets go (`free`) feels nothing: None.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from timeline.devices import Actuator, DeviceInfo, Hand
+from timeline.devices.hand_models import HAND_MODELS
 
 KNOB_RADIUS = 0.015  # m: where the fingertips touch a 30 mm knob
 G = 9.81  # m/s^2
@@ -21,9 +24,10 @@ G = 9.81  # m/s^2
 def displacement_per_unit(
     info: DeviceInfo, actuator: Actuator | None, frequency: np.ndarray, hand: Hand | None = None
 ) -> np.ndarray | None:
-    """Peak skin displacement (m) per unit of drive (in the device's output unit); None if unknown.
+    """Peak skin displacement (m) per unit of drive (in the device's output unit); None if unknown
+    or nothing touches the knob.
 
-    An actuator's full scale is the device's maximum output.
+    An actuator's full scale is the device's maximum output; a knob's hand defaults to `hold`.
     """
     f = np.maximum(np.asarray(frequency, dtype=np.float64), 1.0)
     w = 2.0 * np.pi * f
@@ -32,7 +36,9 @@ def displacement_per_unit(
     if info.kind != "kinesthetic" or info.dynamics is None:
         return None
     hand = hand or Hand("hold")
+    if not hand.touches:
+        return None
     dyn = info.dynamics
-    z = hand.grip_stiffness - (dyn.inertia + hand.inertia) * w * w
-    z = z + 1j * w * (dyn.damping + hand.grip_damping)
-    return KNOB_RADIUS / np.abs(z)
+    grip_k, grip_b = (hand.grip_stiffness, hand.grip_damping) if hand.grips else (0.0, 0.0)
+    z = grip_k - (dyn.inertia + hand.inertia) * w * w + 1j * w * (dyn.damping + grip_b)
+    return (HAND_MODELS[hand.model].radius or KNOB_RADIUS) / np.abs(z)
