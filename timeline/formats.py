@@ -123,9 +123,13 @@ def readers_for(path: str | os.PathLike) -> list[Format]:
 
 
 def writer_for(path: str | os.PathLike) -> Format:
-    """The format that writes files with this path's extension (FormatError if none)."""
+    """The format that writes files with this path's extension (FormatError if none).
+
+    The plugin named after the extension ("csv" for .csv) is tried first, then the rest in name
+    order; the search stops loading plugins at the first that fits.
+    """
     ext = extension(path)
-    for _, f in plugins.iter_group(plugins.IMPORTERS):  # stops loading at the first that fits
+    for _, f in plugins.iter_group(plugins.IMPORTERS, first=ext.lstrip(".")):
         if f.writes and ext in f.extensions:
             return f
     known = sorted({e for f in all_formats().values() if f.writes for e in f.extensions})

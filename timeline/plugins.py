@@ -38,13 +38,14 @@ def _load(group: str, ep: Any) -> Any:
     return _loaded[key]
 
 
-def iter_group(group: str) -> Iterator[tuple[str, Any]]:
-    """(name, plugin) in name order, each loaded only when the iteration reaches it.
+def iter_group(group: str, first: str = "") -> Iterator[tuple[str, Any]]:
+    """(name, plugin) in name order (the one named `first`, if any, before the rest), each
+    loaded only when the iteration reaches it.
 
     A caller that stops at the first plugin it wants (the writer for an extension) leaves the
     rest, and the libraries they import, unloaded.
     """
-    for ep in _entry_points(group):
+    for ep in sorted(_entry_points(group), key=lambda e: e.name != first):
         plugin = _load(group, ep)
         if plugin is not _FAILED:
             yield ep.name, plugin

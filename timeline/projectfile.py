@@ -7,12 +7,11 @@ the previous file intact.
 
 from __future__ import annotations
 
-import base64
 import gc
 import json
 import math
 import os
-import zlib
+import secrets
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from json.encoder import c_make_encoder, encode_basestring_ascii  # type: ignore[attr-defined]
@@ -23,13 +22,14 @@ from typing import Any
 
 import numpy as np
 
+from timeline import media as sample_media
 from timeline import project_fields as fields
 from timeline.atomic import write_atomically
 from timeline.errors import EditError, HapticTimelineError, ProjectFileError
 from timeline.markers import LoopRegion, Marker, markers_to_json
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.project_fields import FieldError
-from timeline.tiles import MAX_TILE_SAMPLES, GeneratorTile, SampledTile, SplineTile, Tile
+from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
@@ -57,19 +57,13 @@ MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2, 2: _schema_2
 # --- writing -----------------------------------------------------------------------------------
 
 
-def _encode_samples(data: np.ndarray) -> dict[str, Any]:
-    raw = np.ascontiguousarray(data, dtype="<f8").tobytes()
-    return {
-        "dtype": "<f8",
-        "count": int(data.size),
-        "encoding": "zlib+base64",
-        "data": base64.b64encode(zlib.compress(raw, 6)).decode("ascii"),
-    }
+MediaEntry = Callable[[np.ndarray], dict[str, Any]]
 
 
-def _tile_to_json(tile: Tile, media: dict[str, Any]) -> dict[str, Any]:
+def _tile_to_json(tile: Tile, media: dict[str, Any], entry: MediaEntry) -> dict[str, Any]:
     if isinstance(tile, SampledTile):
-        media.setdefault(tile.key, _encode_samples(tile.data))
+        if tile.key not in media:  # a recording shared by tiles and variants is encoded once
+            media[tile.key] = entry(tile.data)
         return {
             "type": "sampled",
             "name": tile.name,
@@ -142,13 +136,20 @@ def _id_order(item_id: str) -> tuple[str, int, str]:
     return (stem, int(digits) if digits else -1, item_id)
 
 
-def to_json(project: Project, clip_json: Callable[[Clip], Any] = _clip_to_json) -> dict[str, Any]:
+def to_json(
+    project: Project,
+    clip_json: Callable[[Clip], Any] = _clip_to_json,
+    media_entry: MediaEntry = sample_media.encode,
+) -> dict[str, Any]:
     """The project as a JSON-ready dict (schema SCHEMA); clip_json writes each clip of the
-    project's own tracks (a variant's tracks are saved one line each, as plain dicts)."""
+    project's own tracks (a variant's tracks are saved one line each, as plain dicts) and
+    media_entry each recording's samples."""
     media: dict[str, Any] = {}
 
     def tiles(mapping) -> dict[str, Any]:  # in id order, so a saved file's bytes are stable
-        return {k: _tile_to_json(mapping[k], media) for k in sorted(mapping, key=_id_order)}
+        return {
+            k: _tile_to_json(mapping[k], media, media_entry) for k in sorted(mapping, key=_id_order)
+        }
 
     body = {
         "axis": project.axis,
@@ -251,41 +252,43 @@ def _text(value: Any, compact: Callable[[Any], str], depth: int = 0) -> str:
     return "[" + pad + ("," + pad).join(_text(v, compact, depth + 1) for v in value) + close + "]"
 
 
-def dumps(project: Project) -> str:
+def dumps(project: Project, media_entry: MediaEntry = sample_media.encode) -> str:
     """The project file's text."""
     try:
-        return _text(to_json(project, _clip_line), _compact_encoder()) + "\n"
+        return _text(to_json(project, _clip_line, media_entry), _compact_encoder()) + "\n"
     except (TypeError, ValueError) as exc:
         raise ProjectFileError(f"the project cannot be saved: {exc}") from None
 
 
 def save(project: Project, path: str | os.PathLike) -> None:
-    """Write the project atomically: the old file stays intact until the new one is complete."""
-    text = dumps(project).encode("utf-8")
-    write_atomically(path, lambda tmp: tmp.write_bytes(text))
+    """Write the project atomically: the old file stays intact until the new one is complete.
+
+    The bytes are dumps(project)'s, but each recording's samples are streamed into the file in
+    pieces where its text would be, so an hour's base64 is never held as one string.
+    """
+    marker = f"\0samples-{secrets.token_hex(8)}-"  # in no other string of the file
+    recordings: list[np.ndarray] = []
+
+    def placeholder(data: np.ndarray) -> dict[str, Any]:
+        recordings.append(data)
+        return sample_media.header(data, f"{marker}{len(recordings) - 1}")
+
+    text = dumps(project, placeholder)
+
+    def write(tmp: Path) -> None:
+        with open(tmp, "wb") as out:
+            rest = text
+            for i, data in enumerate(recordings):
+                before, rest = rest.split(_COMPACT.encode(f"{marker}{i}"), 1)
+                out.write(before.encode("utf-8") + b'"')
+                sample_media.write_base64(data, out)
+                out.write(b'"')
+            out.write(rest.encode("utf-8"))
+
+    write_atomically(path, write)
 
 
 # --- reading -----------------------------------------------------------------------------------
-
-
-def _decode_samples(entry: Any, where: str) -> np.ndarray:
-    if (
-        fields.get(entry, "dtype", str, where) != "<f8"
-        or fields.get(entry, "encoding", str, where) != "zlib+base64"
-    ):
-        raise FieldError(f"{where} uses an unknown sample encoding")
-    count = fields.get(entry, "count", int, where)
-    if not 0 < count <= MAX_TILE_SAMPLES:
-        raise FieldError(f"{where} declares {count} samples, outside the supported range")
-    try:
-        packed = base64.b64decode(fields.get(entry, "data", str, where), validate=True)
-        inflater = zlib.decompressobj()
-        raw = inflater.decompress(packed, count * 8 + 1)  # never inflate more than declared
-    except (ValueError, zlib.error):
-        raise FieldError(f"{where} holds damaged sample data") from None
-    if len(raw) != count * 8 or inflater.unconsumed_tail or not inflater.eof:
-        raise FieldError(f"{where} holds {len(raw) // 8} samples but declares {count}")
-    return np.frombuffer(raw, dtype="<f8").astype(np.float64)
 
 
 def _tile_from_json(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
@@ -496,7 +499,7 @@ def from_json(doc: Any) -> Project:
         version += 1
     body = fields.get(doc, "project", dict, "the file")
     media = {
-        k: _decode_samples(v, f"media {k!r}")
+        k: sample_media.decode(v, f"media {k!r}")
         for k, v in fields.get(doc, "media", dict, "the file").items()
     }
 
@@ -594,9 +597,14 @@ def _collector_paused() -> Iterator[None]:
 
 def loads(text: str | bytes, name: str = "the project") -> Project:
     """Parse a project file's content."""
+    return _opened(lambda: json.loads(text, parse_constant=fields.refuse_constant), name)
+
+
+def _opened(parse: Callable[[], Any], name: str) -> Project:
+    """The project from parse()'s document; any problem is one ProjectFileError sentence."""
     try:
         with _collector_paused():
-            doc = json.loads(text, parse_constant=fields.refuse_constant)
+            doc = parse()
             return from_json(doc)
     except FieldError as exc:
         raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
@@ -618,4 +626,8 @@ def load(path: str | os.PathLike) -> Project:
     size = path.stat().st_size
     if size > MAX_FILE_BYTES:
         raise ProjectFileError(f"{path} is {size} bytes, larger than a project file can be")
-    return loads(path.read_bytes(), str(path))
+
+    def parse() -> Any:  # the file's bytes are let go once parsed, before recordings are inflated
+        return json.loads(path.read_bytes(), parse_constant=fields.refuse_constant)
+
+    return _opened(parse, str(path))

@@ -2,12 +2,21 @@
 
 from __future__ import annotations
 
+import io
+import tempfile
+from pathlib import Path
+from unittest.mock import patch
+
 import numpy as np
 import pytest
 import scipy.io
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
 
+from importers import text
 from timeline import edits, exporting, importing, mixer
-from timeline.formats import FormatError
+from timeline.formats import FormatError, Layers
 from timeline.tiles import SampledTile
 
 RNG = np.random.default_rng(3)
@@ -121,3 +130,40 @@ def test_matlab_v73_is_refused_clearly(tmp_path):
     (tmp_path / "a.mat").write_bytes(b"MATLAB 7.3 MAT-file, Platform: x" + b"\0" * 200)
     with pytest.raises(FormatError, match="v7.3"):
         _read(tmp_path / "a.mat")
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(
+        arrays(np.float64, st.integers(1, 12), elements=st.floats(allow_nan=False, width=64)),
+        min_size=1,
+        max_size=3,
+    ),
+    st.sampled_from([10000.0, 1234.5, 10000 / 3]),
+    st.sampled_from([".csv", ".txt"]),
+    st.sampled_from([1, 5, 4096]),
+)
+def test_written_tables_are_the_bytes_numpy_savetxt_writes(columns, rate, ext, block):
+    layers = Layers({f"layer{k}": c for k, c in enumerate(columns)}, rate, 0.25)
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / f"t{ext}"
+        with patch.object(text, "ROW_BLOCK", block):
+            exporting.write_layers(layers, path)
+        table = np.zeros((layers.length, 1 + len(columns)))
+        table[:, 0] = 0.25 + np.arange(layers.length) / rate
+        for k, c in enumerate(columns, start=1):
+            table[: len(c), k] = c
+        names = ["time", *layers.columns]
+        csv = ext == ".csv"
+        footer = "" if text._axis_gives_rate(table[:, 0], rate) else f"rate={rate!r}"
+        expected = io.StringIO()
+        np.savetxt(
+            expected,
+            table,
+            fmt="%.17g",
+            delimiter="," if csv else "\t",
+            header=("," if csv else "\t").join(names),
+            footer=("# " if csv and footer else "") + footer,
+            comments="" if csv else "% ",
+        )
+        assert path.read_text(encoding="utf-8") == expected.getvalue()

@@ -27,13 +27,22 @@ VERB_MODULES = [
 ]
 
 
-def build_parser() -> argparse.ArgumentParser:
+def _verb_of(module: str) -> str:
+    """The verb a verb module defines: timeline.cli.render_cmd defines `render`."""
+    return module.rsplit(".", 1)[1].removesuffix("_cmd")
+
+
+VERBS = {_verb_of(name): name for name in VERB_MODULES}
+
+
+def build_parser(verb: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser: every verb, or only `verb` (the others' modules stay unloaded)."""
     parser = argparse.ArgumentParser(
         prog="haptic-timeline",
         description="Design haptic icons on a multitrack timeline.",
     )
     sub = parser.add_subparsers(dest="verb", metavar="VERB")
-    for name in VERB_MODULES:
+    for name in [VERBS[verb]] if verb in VERBS else VERB_MODULES:
         importlib.import_module(name).add_parser(sub)
     return parser
 
@@ -59,18 +68,28 @@ def _with_default_verb(argv: list[str], verbs: set[str]) -> list[str]:
     )
 
 
+def one_blas_thread() -> None:
+    """Hold OpenBLAS to one thread unless the user chose otherwise (before numpy loads).
+
+    Every matrix the project factors or multiplies is tiny (the servo loop's 3x3 to 40x40), and
+    the mixer uses no BLAS; worker threads only spin against the mixer and the simulator. On this
+    2-core machine under load a 3x3 expm took up to 20 ms with the pool (0.04 ms alone), and the
+    simulator's stability flags were 150x slower.
+    """
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one verb; a user's mistake prints one sentence on stderr and returns non-zero."""
-    parser = build_parser()
-    verbs = set(parser._subparsers._group_actions[0].choices)  # type: ignore[union-attr]
+    one_blas_thread()
     try:
-        argv = _with_default_verb(sys.argv[1:] if argv is None else argv, verbs)
+        argv = _with_default_verb(sys.argv[1:] if argv is None else argv, set(VERBS))
     except HapticTimelineError as exc:
         print(f"haptic-timeline: {exc}", file=sys.stderr)
         return 2
-    args = parser.parse_args(argv)
+    args = build_parser(argv[0]).parse_args(argv)
     if not getattr(args, "func", None):
-        parser.print_help()
+        build_parser().print_help()
         return 2
     try:
         return int(args.func(args) or 0)
