@@ -13,51 +13,83 @@ from timeline.errors import EditError
 from timeline.model import Project
 from timeline.quality import preset
 from timeline.tiles import SampledTile, SplineTile, Tile
+from timeline.vibration_tile import VibrationTile
 
 EDITABLE_POINTS = 12
 
 
-def _spline(project: Project, tile_id: str) -> SplineTile:
+def points_of(tile: Tile | None) -> tuple[tuple[float, float], ...] | None:
+    """The points a designer drags in the waveform editor: a spline's control points, or a
+    vibration design's amplitude breakpoints (0..1); None for tiles without points."""
+    if isinstance(tile, SplineTile):
+        return tile.points
+    if isinstance(tile, VibrationTile):
+        return tile.design.amplitude
+    return None
+
+
+def _points(project: Project, tile_id: str) -> tuple[Tile, list[tuple[float, float]]]:
     tile = project.tile(tile_id)
-    if not isinstance(tile, SplineTile):
+    points = points_of(tile)
+    if points is None:
         raise EditError(f"{tile.name} is not a spline; make an editable copy to change its points")
-    return tile
+    return tile, list(points)
+
+
+def _with_points(tile: Tile, points: list[tuple[float, float]]) -> Tile:
+    if isinstance(tile, VibrationTile):
+        return replace(tile, design=replace(tile.design, amplitude=tuple(points)))
+    return replace(tile, points=tuple(points))
+
+
+def _span(tile: Tile) -> float:
+    """How far points may go: a spline's length, a design's (its emphasis may ring past it)."""
+    return tile.design.duration if isinstance(tile, VibrationTile) else tile.duration
+
+
+def _value(tile: Tile, v: float) -> float:
+    """A dragged value as the tile takes it: an amplitude stays within 0..1."""
+    return min(max(v, 0.0), 1.0) if isinstance(tile, VibrationTile) else v
 
 
 def move_point(project: Project, tile_id: str, index: int, t: float, v: float) -> Project:
-    """Move one control point to (t, v), kept between its neighbours and inside the tile."""
-    tile = _spline(project, tile_id)
-    points = list(tile.points)
+    """Move one point to (t, v), kept between its neighbours and inside the tile.
+
+    A spline's points stay 1 us apart; a design's amplitude breakpoints may share a time (a
+    step) and keep their values within 0..1."""
+    tile, points = _points(project, tile_id)
     if not 0 <= index < len(points):
-        raise EditError(f"the spline has no point {index + 1}")
-    lo = points[index - 1][0] + 1e-6 if index > 0 else 0.0
-    hi = points[index + 1][0] - 1e-6 if index + 1 < len(points) else tile.duration
+        raise EditError(f"the tile has no point {index + 1}")
+    gap = 0.0 if isinstance(tile, VibrationTile) else 1e-6
+    lo = points[index - 1][0] + gap if index > 0 else 0.0
+    hi = points[index + 1][0] - gap if index + 1 < len(points) else _span(tile)
     if not (math.isfinite(t) and math.isfinite(v)):
         raise EditError("a point needs finite numbers")
-    points[index] = (min(max(t, lo), hi), v)
-    return replace_tile(project, tile_id, replace(tile, points=tuple(points)))
+    points[index] = (min(max(t, lo), hi), _value(tile, v))
+    return replace_tile(project, tile_id, _with_points(tile, points))
 
 
 def add_point(project: Project, tile_id: str, t: float, v: float) -> tuple[Project, int]:
-    """Add a control point; returns its index."""
-    tile = _spline(project, tile_id)
-    if not 0.0 <= t <= tile.duration:
-        raise EditError(f"a point must lie inside the tile (0 to {tile.duration:.4g})")
-    if any(abs(p[0] - t) < 1e-6 for p in tile.points):
+    """Add a point; returns its index."""
+    tile, points = _points(project, tile_id)
+    if not 0.0 <= t <= _span(tile):
+        raise EditError(f"a point must lie inside the tile (0 to {_span(tile):.4g})")
+    if any(abs(p[0] - t) < 1e-6 for p in points):
         raise EditError("there is already a point at that time")
-    new = replace(tile, points=tile.points + ((t, v),))
-    return replace_tile(project, tile_id, new), [p[0] for p in new.points].index(t)
+    index = sum(1 for p in points if p[0] < t)
+    points.insert(index, (t, _value(tile, v)))
+    return replace_tile(project, tile_id, _with_points(tile, points)), index
 
 
 def remove_point(project: Project, tile_id: str, index: int) -> Project:
-    """Delete a control point (a spline keeps at least one)."""
-    tile = _spline(project, tile_id)
-    if len(tile.points) <= 1:
-        raise EditError("a spline needs at least one point")
-    if not 0 <= index < len(tile.points):
-        raise EditError(f"the spline has no point {index + 1}")
-    points = tile.points[:index] + tile.points[index + 1 :]
-    return replace_tile(project, tile_id, replace(tile, points=points))
+    """Delete a point (a tile keeps at least one)."""
+    tile, points = _points(project, tile_id)
+    if len(points) <= 1:
+        raise EditError("a tile's shape needs at least one point")
+    if not 0 <= index < len(points):
+        raise EditError(f"the tile has no point {index + 1}")
+    del points[index]
+    return replace_tile(project, tile_id, _with_points(tile, points))
 
 
 def editable_copy(project: Project, tile_id: str, tab: str = "Scratch") -> tuple[Project, str]:

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from timeline import edits, mixer, projectfile, tile_params
+from timeline import edits, mixer, projectfile, tile_edits, tile_params
 from timeline.errors import EditError, ProjectFileError
 from timeline.kinds import track_kind
 from timeline.tiles import generator
@@ -140,6 +140,19 @@ def test_an_emphasis_tile_s_parameters_are_its_emphasis_and_set_its_length():
     assert np.any(x[5000 + 240 : 5000 + 249]) and not np.any(x[5000 + 251 :])  # 25 ms: 250
     with pytest.raises(EditError, match="lasts 0.025 s, as its parameters say"):
         tile_params.set_length(p, clip.tile_id, 0.5)
+
+
+def test_amplitude_breakpoints_are_edited_as_points_and_read_back_exactly():
+    p = _project()
+    tile = p.tracks[0].clips[0].tile_id
+    p = tile_edits.move_point(p, tile, 3, 0.7, 1.7)  # (0.6, 0.4) -> (0.7, 1.0): clamped to 1
+    p = tile_edits.move_point(p, tile, 1, 0.5, 0.9)  # one side of the step at 0.2 s stays on it
+    p, k = tile_edits.add_point(p, tile, 0.9, 0.25)
+    p = tile_edits.remove_point(p, tile, 0)
+    assert k == 4
+    assert design_of(p).amplitude == ((0.2, 0.9), (0.2, 0.4), (0.7, 1.0), (0.9, 0.25), (1.0, 0.0))
+    with pytest.raises(EditError, match="inside the tile"):
+        tile_edits.add_point(p, tile, 1.5, 0.5)
 
 
 def test_a_fade_is_reduced_to_breakpoints_within_the_stated_bound():

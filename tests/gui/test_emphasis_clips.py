@@ -13,7 +13,7 @@ from PySide6.QtTest import QTest
 from timeline import edits
 from timeline.vibration import Emphasis, VibrationDesign, place_design
 
-from .helpers import clip_point, drag
+from .helpers import click, clip_point, drag
 
 PX = 200.0  # pixels per second
 DESIGN = VibrationDesign(
@@ -85,3 +85,43 @@ def test_dragging_an_emphasis_clip_moves_the_exported_emphasis(designer, qtbot, 
         win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "emphasis_after.png"))
     softer = _haptic_emphasis(win, qtbot, tmp_path / "softer.haptic")
     assert softer[0] == (after[0][0], 0.5, 0.8) and softer[1] == before[1]
+
+
+def test_dragging_an_amplitude_breakpoint_in_the_waveform_editor_edits_the_design(
+    designer, qtbot, tmp_path
+):
+    win = designer
+    envelopes = win.doc.project.tracks[0].clips[0]
+    click(win, clip_point(win, envelopes.id))  # select the clip: its tile opens in the editor
+    canvas = win.editor.canvas
+    assert win.editor.tile.design.amplitude == DESIGN.amplitude
+    # the breakpoint at 0.9 s (0.3) dragged up to about 0.6; the drag also moves it in time a bit
+    press = QPoint(int(canvas.x_of(0.9)), int(canvas.y_of(0.3)))
+    target = QPoint(press.x(), int(canvas.y_of(0.6)))
+    QTest.mousePress(canvas, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, press)
+    QTest.mouseMove(canvas, (press + target) / 2)
+    QTest.mouseMove(canvas, target)
+    QTest.mouseRelease(canvas, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, target)
+    if os.environ.get("HT_SCREENSHOTS"):
+        win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "envelope_point.png"))
+    win.export_to(tmp_path / "edited.haptic")
+    qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
+    doc = json.loads((tmp_path / "edited.haptic").read_text())
+    amplitude = [
+        (b["time"], b["amplitude"])
+        for b in doc["signals"]["continuous"]["envelopes"]["amplitude"]
+        if "emphasis" not in b  # breakpoints the writer inserts to carry an emphasis
+    ]
+    moved = amplitude[2]
+    assert moved[0] == pytest.approx(0.9, abs=2 * DESIGN.duration / canvas.width())
+    assert moved[1] == pytest.approx(0.6, abs=0.02)
+    assert [amplitude[k] for k in (0, 1, 3)] == [DESIGN.amplitude[k] for k in (0, 1, 3)]
+    # dragged above full scale, an amplitude stops at 1; one undo step puts it back
+    QTest.mousePress(canvas, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, target)
+    QTest.mouseMove(canvas, QPoint(target.x(), 0))
+    QTest.mouseRelease(
+        canvas, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, QPoint(target.x(), 0)
+    )
+    assert win.editor.tile.design.amplitude[2][1] == 1.0
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert win.editor.tile.design.amplitude[2][1] == pytest.approx(0.6, abs=0.02)

@@ -20,7 +20,8 @@ from PySide6.QtWidgets import (
 
 from timeline import tile_edits
 from timeline.model import Track
-from timeline.tiles import SplineTile, Tile
+from timeline.tiles import Tile
+from timeline.vibration_tile import VibrationTile
 
 from .clip_shape import tile_samples
 from .document import Document
@@ -75,10 +76,7 @@ class Canvas(QWidget):
         return hi - (y - MARGIN) / (self.height() - 2 * MARGIN) * (hi - lo)
 
     def point_at(self, pos: QPointF) -> int | None:
-        tile = self.editor.tile
-        if not isinstance(tile, SplineTile):
-            return None
-        for i, (t, v) in enumerate(tile.points):
+        for i, (t, v) in enumerate(tile_edits.points_of(self.editor.tile) or ()):
             if abs(self.x_of(t) - pos.x()) <= PICK_PX and abs(self.y_of(v) - pos.y()) <= PICK_PX:
                 return i
         return None
@@ -114,12 +112,16 @@ class Canvas(QWidget):
         painter.drawPolyline(
             QPolygonF([QPointF(x, self.y_of(v)) for x, v in zip(xs, values, strict=True)])
         )
-        if isinstance(tile, SplineTile):
-            for i, (t, v) in enumerate(tile.points):
-                chosen = i == self.editor.point
-                painter.setBrush(QColor("#d1495b" if chosen else "#ffffff"))
-                painter.setPen(QPen(QColor("#222222"), 1))
-                painter.drawEllipse(QPointF(self.x_of(t), self.y_of(v)), 5, 5)
+        points = tile_edits.points_of(tile) or ()
+        if isinstance(tile, VibrationTile) and points:  # the amplitude envelope the points make
+            painter.setPen(QPen(QColor("#d1495b"), 1.5))
+            line = [QPointF(self.x_of(t), self.y_of(v)) for t, v in points]
+            painter.drawPolyline(QPolygonF(line))
+        for i, (t, v) in enumerate(points):
+            chosen = i == self.editor.point
+            painter.setBrush(QColor("#d1495b" if chosen else "#ffffff"))
+            painter.setPen(QPen(QColor("#222222"), 1))
+            painter.drawEllipse(QPointF(self.x_of(t), self.y_of(v)), 5, 5)
         font = QFont()
         font.setPointSizeF(8.0)
         painter.setFont(font)
@@ -302,13 +304,10 @@ class WaveformEditor(QWidget):
             self.tile_id = self.doc.selected_tile
             self.point, self.range = None, (0.0, 0.0)
         tile = self.tile
-        if (
-            isinstance(tile, SplineTile)
-            and self.point is not None
-            and self.point >= len(tile.points)
-        ):
+        points = tile_edits.points_of(tile)
+        if points is not None and self.point is not None and self.point >= len(points):
             self.point = None
-        editable = isinstance(tile, SplineTile)
+        editable = points is not None
         for widget in (self.t_box, self.v_box, self.delete_button):
             widget.setEnabled(editable and self.point is not None)
         self.copy_button.setEnabled(tile is not None)
@@ -317,7 +316,7 @@ class WaveformEditor(QWidget):
         self.t_box.setPrefix("t " if axis == "time" else "θ ")
         self.t_box.setSuffix(" s" if axis == "time" else "°")
         if editable and self.point is not None:
-            t, v = tile.points[self.point]
+            t, v = points[self.point]
             for box, value in ((self.t_box, t * display_factor(axis)), (self.v_box, v)):
                 box.blockSignals(True)
                 box.setValue(value)
