@@ -51,9 +51,11 @@ def band_limited(
     duration: float,
     params: Mapping[str, float],
     evaluate: Callable[[np.ndarray], np.ndarray],
+    bounds: tuple[float, float] | None = None,
 ) -> np.ndarray:
     """The shape at positions u (sampled at a spacing with this Nyquist frequency) with content
-    at or above Nyquist removed; `evaluate` gives the ideal shape, zero outside its span."""
+    at or above Nyquist removed; `evaluate` gives the ideal shape, zero outside its span.
+    `bounds`, when the caller knows them, are u's least and greatest values."""
     if generator in HARMONIC:
         if abs(params["frequency"]) >= nyquist:
             return np.zeros(np.shape(u))
@@ -62,6 +64,8 @@ def band_limited(
             return evaluate(u)
         with np.errstate(all="ignore"):
             values = synthesise(generator, u, params, nyquist)
+        if bounds is not None and bounds[0] >= 0.0 and bounds[1] <= duration:
+            return values  # all of u inside the span: nothing to zero
         return np.where((u < 0) | (u > duration), 0.0, values)
     highest = _HIGHEST.get(generator)
     if highest is None:
@@ -71,7 +75,7 @@ def band_limited(
     u = np.asarray(u, dtype=np.float64)
     if u.size == 0:
         return evaluate(u)
-    ends = np.array([u.min(), u.max()])
+    ends = np.array([u.min(), u.max()] if bounds is None else bounds)
     top = np.broadcast_to(highest(ends, duration, params), ends.shape)
     if top.max() < nyquist:
         return evaluate(u)  # nothing reaches Nyquist: no mask, the same values

@@ -7,9 +7,11 @@ import math
 import numpy as np
 
 from timeline.fades import fade_envelope
-from timeline.model import Clip
+from timeline.model import Clip, Fade
 from timeline.quality import QualityPreset
 from timeline.tiles import Tile
+
+NO_FADE = Fade()
 
 
 def clip_sample_range(clip: Clip, t0: float, rate: float, n: int) -> tuple[int, int]:
@@ -74,7 +76,13 @@ def _apply_fades(values: np.ndarray, clip: Clip, pos0: float, rate: float) -> No
     for lo, hi in spans:
         if hi > lo:
             pos = pos0 + np.arange(lo, hi) / rate
-            values[lo:hi] *= fade_envelope(pos, clip.duration, fade_in, fade_out)
+            # a fade whose gain is exactly 1 over the whole span (its x >= 1 at the span's end
+            # nearest it: x is monotone in pos) is left out, with the same bits
+            fi = fade_in if fade_in.length > 0 and pos[0] / fade_in.length < 1.0 else NO_FADE
+            ends = clip.duration - pos[-1]
+            fo = fade_out if fade_out.length > 0 and ends / fade_out.length < 1.0 else NO_FADE
+            if fi.length > 0 or fo.length > 0:
+                values[lo:hi] *= fade_envelope(pos, clip.duration, fi, fo)
 
 
 def _source_values(

@@ -29,6 +29,8 @@ MAX_COUNTED = 100_000
 # ~0.5 s CPU once per process. Smaller sums (8 ms at most) stay in numpy, so a render that only
 # has those (every example) never loads numba.
 COMPILED_WORK = 2_000_000
+# Even harmonics this small against the largest are rounding (a square of duty 1/2 has ~1e-16).
+ODD_ONLY = 1e-12
 
 
 def harmonics_below(frequency: float, nyquist: float) -> int:
@@ -85,36 +87,46 @@ def synthesise(
     """The wave at positions u with every harmonic below `nyquist` and none at or above it."""
     keep = harmonics_below(params["frequency"], nyquist)
     mean, _ = _mean_and_power(generator, params)
-    b = _coefficients(generator, params, keep)[::-1]
+    b = _coefficients(generator, params, keep)
+    magnitude = np.abs(b)
+    # A triangle, or a square of duty 1/2, has no even harmonics (within rounding): sum the odd
+    # ones in z^2, half the terms
+    odd = keep > 2 and magnitude[1::2].max() <= ODD_ONLY * magnitude.max()
+    b = (b[0::2] if odd else b)[::-1]
     x = params["frequency"] * np.asarray(u, dtype=np.float64) + params["phase"] / (2.0 * np.pi)
     out = np.empty(x.shape)
     flat_x, flat_out = x.reshape(-1), out.reshape(-1)
-    if flat_x.size * keep >= COMPILED_WORK or "timeline.render_kernels" in sys.modules:
+    if flat_x.size * b.size >= COMPILED_WORK or "timeline.render_kernels" in sys.modules:
         from timeline.render_kernels import fourier_real
 
-        fourier_real(flat_x, b.real.copy(), b.imag.copy(), flat_out)
+        fourier_real(flat_x, b.real.copy(), b.imag.copy(), odd, flat_out)
     else:
-        _fourier_real(flat_x, b.real, b.imag, flat_out)
+        _fourier_real(flat_x, b.real, b.imag, odd, flat_out)
     return params["amplitude"] * (mean + out)
 
 
-def _fourier_real(x: np.ndarray, re: np.ndarray, im: np.ndarray, out: np.ndarray) -> None:
-    """out = Re(sum_k c_k z^k), z = exp(2 pi i x), c = re + i im highest k first: Horner's rule
-    (stable for |z| = 1) in real numpy operations, each rounded on its own, so the compiled loop
-    (timeline.render_kernels.fourier_real) gives the same bits on any machine."""
+def _fourier_real(
+    x: np.ndarray, re: np.ndarray, im: np.ndarray, odd: bool, out: np.ndarray
+) -> None:
+    """out = Re(sum_k c_k z^k), z = exp(2 pi i x), c = re + i im highest k first (with `odd`,
+    c lists the odd k only): Horner's rule (stable for |z| = 1) in real numpy operations, each
+    rounded on its own, so the compiled loop (timeline.render_kernels.fourier_real) gives the
+    same bits on any machine."""
     for start in range(0, x.size, _BLOCK):
         part = x[start : start + _BLOCK]
         theta = 2.0 * np.pi * (part - np.floor(part))
         zr, zi = np.cos(theta), np.sin(theta)
+        wr, wi = (zr * zr - zi * zi, zr * zi + zi * zr) if odd else (zr, zi)  # the step: z or z^2
         tr, ti = np.zeros(part.size), np.zeros(part.size)
         a, b, t = np.empty(part.size), np.empty(part.size), np.empty(part.size)
         for cr, ci in zip(re.tolist(), im.tolist(), strict=True):
             np.add(tr, cr, out=a)
             np.add(ti, ci, out=b)
-            np.multiply(a, zr, out=tr)  # tr = a zr - b zi
-            np.multiply(b, zi, out=t)
+            np.multiply(a, wr, out=tr)  # tr = a wr - b wi
+            np.multiply(b, wi, out=t)
             np.subtract(tr, t, out=tr)
-            np.multiply(a, zi, out=ti)  # ti = a zi + b zr
-            np.multiply(b, zr, out=t)
+            np.multiply(a, wi, out=ti)  # ti = a wi + b wr
+            np.multiply(b, wr, out=t)
             np.add(ti, t, out=ti)
-        out[start : start + _BLOCK] = tr
+        # with odd steps the sum is z times the wanted one: take Re(total * conj(z))
+        out[start : start + _BLOCK] = tr * zr + ti * zi if odd else tr

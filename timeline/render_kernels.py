@@ -27,14 +27,17 @@ def scaled_add(out: np.ndarray, x: np.ndarray, weight: float) -> None:
 
 
 @njit(cache=True)
-def fourier_real(x: np.ndarray, re: np.ndarray, im: np.ndarray, out: np.ndarray) -> None:
-    """out = Re(sum_k c_k z^k) for z = exp(2 pi i x), c listed highest k first (re, im), by
-    Horner's rule on z (stable for |z| = 1): the loop of harmonic_waves.synthesise, compiled."""
+def fourier_real(x: np.ndarray, re: np.ndarray, im: np.ndarray, odd: bool, out: np.ndarray) -> None:
+    """out = Re(sum_k c_k z^k) for z = exp(2 pi i x), c listed highest k first (re, im; with
+    `odd`, the odd k only, summed in z^2), by Horner's rule (stable for |z| = 1): the numpy loop
+    of harmonic_waves._fourier_real, compiled, operation for operation."""
     n = x.shape[0]
     tr = np.empty(_LANES)
     ti = np.empty(_LANES)
     zr = np.empty(_LANES)
     zi = np.empty(_LANES)
+    wr = np.empty(_LANES)
+    wi = np.empty(_LANES)
     for start in range(0, n, _LANES):
         m = min(_LANES, n - start)
         for j in range(m):
@@ -42,6 +45,12 @@ def fourier_real(x: np.ndarray, re: np.ndarray, im: np.ndarray, out: np.ndarray)
             theta = 2.0 * math.pi * (v - math.floor(v))
             zr[j] = math.cos(theta)
             zi[j] = math.sin(theta)
+            if odd:
+                wr[j] = zr[j] * zr[j] - zi[j] * zi[j]
+                wi[j] = zr[j] * zi[j] + zi[j] * zr[j]
+            else:
+                wr[j] = zr[j]
+                wi[j] = zi[j]
             tr[j] = 0.0
             ti[j] = 0.0
         for k in range(re.shape[0]):
@@ -50,7 +59,7 @@ def fourier_real(x: np.ndarray, re: np.ndarray, im: np.ndarray, out: np.ndarray)
             for j in range(m):
                 a = tr[j] + cr
                 b = ti[j] + ci
-                tr[j] = a * zr[j] - b * zi[j]
-                ti[j] = a * zi[j] + b * zr[j]
+                tr[j] = a * wr[j] - b * wi[j]
+                ti[j] = a * wi[j] + b * wr[j]
         for j in range(m):
-            out[start + j] = tr[j]
+            out[start + j] = tr[j] * zr[j] + ti[j] * zi[j] if odd else tr[j]

@@ -33,13 +33,21 @@ def _check_duration(duration: float) -> float:
 
 
 def _evaluate_decimated(fn, u0: float, du: float, n: int, decimation: int) -> np.ndarray:
-    """Evaluate fn on every `decimation`-th grid point and interpolate linearly in between."""
-    if decimation <= 1 or n <= 2 * decimation:
-        return fn(u0 + du * np.arange(n))
-    coarse_i = np.arange(0, n + decimation - 1, decimation)
-    coarse_i[-1] = min(coarse_i[-1], n - 1)
-    coarse = fn(u0 + du * coarse_i)
-    return np.interp(np.arange(n), coarse_i, coarse)
+    """Evaluate fn(u, lo, hi) on every `decimation`-th grid point and interpolate linearly in
+    between; lo, hi are the grid's least and greatest u (its ends: a grid is monotone)."""
+    every = decimation <= 1 or n <= 2 * decimation
+    at = np.arange(n) if every else np.arange(0, n + decimation - 1, decimation)
+    if not every:
+        at[-1] = min(at[-1], n - 1)
+    u = u0 + du * at
+    ends = (float(u[0]), float(u[-1])) if u.size else (0.0, 0.0)
+    values = fn(u, min(ends), max(ends))
+    return values if every else np.interp(np.arange(n), at, values)
+
+
+def _range(u: np.ndarray) -> tuple[float, float]:
+    """The least and greatest of any u ((0, 0) when empty)."""
+    return (float(u.min()), float(u.max())) if u.size else (0.0, 0.0)
 
 
 def _zero_outside(u: np.ndarray, values: np.ndarray, duration: float, lo: float,
@@ -179,9 +187,13 @@ class SplineTile:
     def evaluate(self, u: np.ndarray) -> np.ndarray:
         """Exact curve values; before the first point and after the last the end values hold."""
         u = np.asarray(u, dtype=np.float64)
+        return self._values(u, *_range(u))
+
+    def _values(self, u: np.ndarray, lo: float, hi: float) -> np.ndarray:
+        """evaluate(u) for float64 u whose least and greatest values are lo and hi."""
         first, last = self.points[0], self.points[-1]
-        out = np.asarray(self._curve(np.clip(u, first[0], last[0])), dtype=np.float64)
-        lo, hi = (float(u.min()), float(u.max())) if u.size else (0.0, 0.0)
+        inside = u if first[0] <= lo and hi <= last[0] else np.clip(u, first[0], last[0])
+        out = np.asarray(self._curve(inside), dtype=np.float64)
         # each mask only where some u needs it (a clip's grid is usually inside the curve)
         if lo <= first[0]:
             out = np.where(u <= first[0], first[1], out)
@@ -190,7 +202,7 @@ class SplineTile:
         return _zero_outside(u, out, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
-        return _evaluate_decimated(self.evaluate, u0, du, n, quality.control_decimation)
+        return _evaluate_decimated(self._values, u0, du, n, quality.control_decimation)
 
     def with_name(self, name: str) -> SplineTile:
         return SplineTile(self.points, self.duration, self.method, name)
@@ -238,11 +250,13 @@ class GeneratorTile:
     def evaluate(self, u: np.ndarray) -> np.ndarray:
         """Exact values at positions u; zero outside [0, duration]."""
         u = np.asarray(u, dtype=np.float64)
+        return self._values(u, *_range(u))
+
+    def _values(self, u: np.ndarray, lo: float, hi: float) -> np.ndarray:
+        """evaluate(u) for float64 u whose least and greatest values are lo and hi."""
         with np.errstate(all="ignore"):
             values = GENERATORS[self.generator].function(u, self.duration, **dict(self.params))
-        values = np.asarray(values, dtype=np.float64)
-        lo, hi = (float(u.min()), float(u.max())) if u.size else (0.0, 0.0)
-        return _zero_outside(u, values, self.duration, lo, hi)
+        return _zero_outside(u, np.asarray(values, dtype=np.float64), self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
         """Samples on the grid u0 + k*du, with content at or above its Nyquist removed (the
@@ -252,8 +266,9 @@ class GeneratorTile:
         nyquist = 0.5 / spacing if spacing > 0 else math.inf
         params = dict(self.params)
 
-        def shape(u: np.ndarray) -> np.ndarray:
-            return band_limited(self.generator, u, nyquist, self.duration, params, self.evaluate)
+        def shape(u: np.ndarray, lo: float, hi: float) -> np.ndarray:
+            return band_limited(self.generator, u, nyquist, self.duration, params,
+                                lambda v: self._values(v, lo, hi), (lo, hi))  # fmt: skip
 
         return _evaluate_decimated(shape, u0, du, n, quality.control_decimation)
 

@@ -2,9 +2,13 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from timeline import edits, render
-from timeline.fades import fade_in_gain
+from timeline.clip_render import _apply_fades
+from timeline.fades import fade_envelope, fade_in_gain
+from timeline.model import Clip, Fade
 from timeline.tiles import SampledTile, generator, spline
 
 from .helpers import one_clip
@@ -187,3 +191,37 @@ def test_sampled_tile_at_another_rate_is_resampled_band_limited():
     assert np.abs(out[interior] - ref[interior]).max() < 1e-3  # 9 kHz removed, 100 Hz kept
     draft = render(p, quality="draft")["drive"] / FULL
     assert np.abs(draft[interior] - ref[interior]).max() > 0.1  # linear interpolation aliases
+
+
+FADE_SHAPES = st.sampled_from(["linear", "equal-power", "exponential", "s-curve"])
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.floats(0.01, 3.0),
+    st.floats(0.0, 1.0),
+    st.floats(0.0, 1.0),
+    FADE_SHAPES,
+    FADE_SHAPES,
+    st.floats(0.0, 1.0),
+    st.sampled_from([1_000.0, 10_000.0, 44_100.0]),
+)
+def test_fades_touch_only_where_their_gain_is_not_1_with_the_same_bits(
+    duration, fade_in, fade_out, in_shape, out_shape, start, rate
+):
+    """Overlapping or separate fades, a window starting anywhere in the clip: the gains applied
+    span by span equal the whole clip multiplied by both envelopes, sample for sample."""
+    clip = Clip(
+        "c", "t", 0.0, 0.0, duration,
+        fade_in=Fade(fade_in * duration, in_shape), fade_out=Fade(fade_out * duration, out_shape),
+    )  # fmt: skip
+    pos0 = start * duration
+    n = max(1, int((duration - pos0) * rate))
+    values = np.cos(np.arange(n) * 0.01) + 2.0
+    expected = values * (
+        fade_envelope(pos0 + np.arange(n) / rate, duration, clip.fade_in, clip.fade_out)
+        if clip.fade_in.length > 0 or clip.fade_out.length > 0
+        else 1.0
+    )
+    _apply_fades(values, clip, pos0, rate)
+    assert np.array_equal(values, expected)

@@ -2,10 +2,13 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from timeline.band_limit import band_limited
 from timeline.generators import GENERATORS
 from timeline.quality import preset
-from timeline.tiles import generator
+from timeline.tiles import generator, spline
 
 NORMAL = preset("normal")
 
@@ -97,3 +100,29 @@ def test_every_generator_renders_finite_values():
         tile = generator(name, 1.0)
         values = tile.render(0.0, 1e-3, 1001, NORMAL)
         assert np.isfinite(values).all(), name
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.sampled_from(sorted(GENERATORS) + ["natural spline", "pchip spline"]),
+    st.floats(-1.0, 3.0),
+    st.floats(1e-5, 1e-2),
+    st.booleans(),
+    st.integers(1, 3_000),
+)
+def test_a_grid_rendered_with_its_ends_as_bounds_equals_the_shape_evaluated_there(
+    name, u0, du, backwards, n
+):
+    """Renders take a grid's least and greatest u from its ends (skipping masks and clips that
+    do nothing there): every sample has the bits of the same shape evaluated at the same u,
+    inside, across and outside the tile, forwards and backwards (reversed clips)."""
+    du = -du if backwards else du
+    grid = u0 + du * np.arange(n)
+    if name.endswith("spline"):
+        tile = spline([(0.2, 0.5), (0.7, -1.0), (1.1, 0.3), (1.8, 0.9)], 2.0, name.split()[0])
+        expected = tile.evaluate(grid)
+    else:
+        tile = generator(name, 2.0)
+        params = dict(tile.params)
+        expected = band_limited(name, grid, 0.5 / abs(du), 2.0, params, tile.evaluate)
+    assert np.array_equal(tile.render(u0, du, n, NORMAL), expected)
