@@ -18,7 +18,7 @@ from timeline.render_kernels import fourier_real, scaled_add
 ANY_FLOAT = st.floats(allow_nan=False, allow_infinity=False, width=64)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(
     arrays(np.float64, st.integers(0, 300), elements=ANY_FLOAT),
     st.data(),
