@@ -7,19 +7,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from timeline.vibration_design import emphasis_pulse
+from timeline.vibration_design import emphasis_length, emphasis_pulse
 
 TWO_PI = 2.0 * np.pi
 
 
 @dataclass(frozen=True)
 class GeneratorSpec:
-    """A generator's name, parameter defaults, and function f(u, duration, **params)."""
+    """A generator's name, parameter defaults, and function f(u, duration, **params).
+
+    `length`, for a shape that lasts a time its parameters set (an emphasis: two cycles of its
+    carrier), gives that time; its tiles are that long.
+    """
 
     name: str
     defaults: Mapping[str, float]
     function: Callable[..., np.ndarray]
     summary: str
+    length: Callable[[Mapping[str, float]], float] | None = None
 
 
 def _sine(u, duration, frequency, phase, amplitude):
@@ -206,6 +211,7 @@ GENERATORS: dict[str, GeneratorSpec] = {
             {"amplitude": 1.0, "frequency": 0.5},
             _emphasis,
             "vibration emphasis: two carrier cycles at a frequency of 0..1 (80..230 Hz)",
+            lambda p: emphasis_length(p["frequency"]),
         ),
     ]
 }

@@ -12,6 +12,7 @@ from dataclasses import replace
 
 from timeline import edits
 from timeline.errors import EditError
+from timeline.generators import GENERATORS
 from timeline.model import Project
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 
@@ -31,7 +32,11 @@ def set_param(project: Project, tile_id: str, name: str, value: float) -> Projec
         new.evaluate(_probe(new))
     except (ValueError, ZeroDivisionError) as exc:
         raise EditError(f"{name} = {value:g} does not make a {tile.generator}: {exc}") from None
-    return edits.replace_tile(project, tile_id, new)
+    project = edits.replace_tile(project, tile_id, new)
+    natural = GENERATORS[tile.generator].length
+    if natural is None:
+        return project
+    return set_length(project, tile_id, natural(dict(new.params)))  # its clips follow
 
 
 def set_length(project: Project, tile_id: str, length: float) -> Project:
@@ -40,6 +45,13 @@ def set_length(project: Project, tile_id: str, length: float) -> Project:
     if not (math.isfinite(length) and length > 0):
         raise EditError(f"a tile's length must be a positive number, not {length:g}")
     tile = project.tile(tile_id)
+    if isinstance(tile, GeneratorTile) and GENERATORS[tile.generator].length is not None:
+        natural = GENERATORS[tile.generator].length(dict(tile.params))
+        if abs(length - natural) > _EDGE * max(1.0, natural):
+            raise EditError(
+                f"a {tile.generator} lasts {natural:.6g} s, as its parameters say; "
+                "change those instead"
+            )
     old = tile.duration
     new = _with_length(tile, length)
     tracks = []

@@ -19,6 +19,18 @@ def test_the_examples_are_quiet(name: str, capsys) -> None:
     report = json.loads(capsys.readouterr().out)
     assert report["findings"] == []
     assert report["limits"]["damping"] == pytest.approx(0.2002, rel=1e-3)
+    assert report["limits"]["mass_high"] == pytest.approx(2.876e-5, rel=1e-3)  # Kalman observer
+
+
+@pytest.mark.parametrize("name", ["fan_knob", "notification_buzz", "rising_resistance"])
+@pytest.mark.parametrize(
+    "options",
+    [["--device-option", "delay=1"], ["--device-option", "estimator=filter"],
+     ["--device", "usb", "--device-option", "emulate=true"], ["--hand", "grasp-turn:45"]],
+)  # fmt: skip
+def test_the_examples_are_quiet_on_every_loop(name: str, options: list[str], capsys) -> None:
+    assert cli.main(["check", str(EXAMPLES / f"{name}.htl"), "--json", *options]) == 0
+    assert json.loads(capsys.readouterr().out)["findings"] == []
 
 
 def _crossing_everything():

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from timeline import edits, mixer, projectfile
+from timeline import edits, mixer, projectfile, tile_params
 from timeline.errors import EditError, ProjectFileError
 from timeline.kinds import track_kind
 from timeline.tiles import generator
@@ -126,6 +126,20 @@ def test_emphasis_clip_edits_are_read_back_as_the_edited_emphasis():
     # reversed, it is no longer an emphasis: the layer is analysed, the other stays exact
     reversed_ = design_of(edits.reverse_clip(p, copy))
     assert [e.time for e in reversed_.emphasis] == [0.5] and reversed_.amplitude != DESIGN.amplitude
+
+
+def test_an_emphasis_tile_s_parameters_are_its_emphasis_and_set_its_length():
+    p = _project()
+    clip = p.tracks[1].clips[0]
+    p = tile_params.set_param(p, clip.tile_id, "frequency", 0.0)  # 185 Hz -> 80 Hz
+    p = tile_params.set_param(p, clip.tile_id, "amplitude", 0.25)
+    longer = p.find_clip(clip.id)[1]
+    assert longer.duration == 2 / F_MIN  # the clip plays all of the longer pulse
+    assert design_of(p).emphasis[0] == Emphasis(0.5, 0.25, 0.0)
+    x = _drive(edits.set_track(p, p.tracks[0].id, mute=True))
+    assert np.any(x[5000 + 240 : 5000 + 249]) and not np.any(x[5000 + 251 :])  # 25 ms: 250
+    with pytest.raises(EditError, match="lasts 0.025 s, as its parameters say"):
+        tile_params.set_length(p, clip.tile_id, 0.5)
 
 
 def test_a_fade_is_reduced_to_breakpoints_within_the_stated_bound():

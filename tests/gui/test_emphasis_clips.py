@@ -7,7 +7,8 @@ import os
 from pathlib import Path
 
 import pytest
-from PySide6.QtCore import QPoint
+from PySide6.QtCore import QPoint, Qt
+from PySide6.QtTest import QTest
 
 from timeline import edits
 from timeline.vibration import Emphasis, VibrationDesign, place_design
@@ -68,10 +69,19 @@ def test_dragging_an_emphasis_clip_moves_the_exported_emphasis(designer, qtbot, 
     assert accents.clips[0].duration * PX == pytest.approx(2.0)  # 10 ms: 2 px at this zoom
     start = clip_point(win, first) + QPoint(3, 0)  # beside it, within its grab area
     drag(win, start, start + QPoint(round(0.1 * PX), 0))  # 20 px: 100 ms later
-    if os.environ.get("HT_SCREENSHOTS"):
-        win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "emphasis_after.png"))
     moved = win.doc.project.find_clip(first)[1]
     assert moved.start == pytest.approx(0.4, abs=0.5 / PX)
     after = _haptic_emphasis(win, qtbot, tmp_path / "after.haptic")
     assert after[0][0] - before[0][0] == pytest.approx(0.1, abs=0.5 / PX)
     assert after[0][1:] == before[0][1:] and after[1] == before[1]
+    # the pressed clip's tile is in the inspector: type a softer level for this emphasis
+    box = win.inspector.boxes["amplitude"]
+    assert box.value() == pytest.approx(0.9) and box.suffix() == " (0..1)"
+    box.selectAll()
+    QTest.keyClicks(box, "0.5")
+    QTest.keyClick(box, Qt.Key.Key_Return)
+    qtbot.wait(50)
+    if os.environ.get("HT_SCREENSHOTS"):
+        win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "emphasis_after.png"))
+    softer = _haptic_emphasis(win, qtbot, tmp_path / "softer.haptic")
+    assert softer[0] == (after[0][0], 0.5, 0.8) and softer[1] == before[1]

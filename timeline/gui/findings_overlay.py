@@ -23,7 +23,8 @@ from timeline.kinds import track_kind
 from timeline.limits.check import Report, check
 from timeline.model import Project
 
-from .rendered_overlay import RenderedLayer
+from .rendered_overlay import RenderedLayer, peaks_of
+from .trace_peaks import Peaks
 
 if TYPE_CHECKING:  # scipy loads with the first rendering, not at start-up
     from timeline.limits.rendered import Trace
@@ -42,6 +43,7 @@ class Checked:
 
     report: Report
     traces: tuple[Trace, ...] = ()
+    peaks: tuple[Peaks, ...] = ()  # each trace's, ready to draw at any zoom
     unrendered: str = ""  # why the traces could not be computed, when they were asked for
 
 
@@ -91,6 +93,7 @@ class FindingsOverlay(QObject):
         self._done = -1  # the version the shown report belongs to
         self.shades: list[FindingShade] = []
         self.traces: tuple[Trace, ...] = ()
+        self.peaks: tuple[Peaks, ...] = ()
         self.rendered = RenderedLayer(view.scene())
         self._unrendered = ""  # the last rendering error said
         self._infos: dict[str, DeviceInfo] = {}
@@ -119,7 +122,7 @@ class FindingsOverlay(QObject):
             self._unrendered = ""
             self.schedule()
         else:
-            self.traces = ()
+            self.traces, self.peaks = (), ()
             self.rendered.clear()
 
     def hand_changed(self) -> None:
@@ -158,12 +161,12 @@ class FindingsOverlay(QObject):
             text = f"Cannot check the design: {result}"
             if self.report is None or self.report.notes != (text,):
                 self.messages.show_message(text, "error")
-            self.report, self.traces = Report((), (text,)), ()
+            self.report, self.traces, self.peaks = Report((), (text,)), (), ()
             self._draw(self.doc.project, self.report)
             return
         report = result.report
         changed = self.report is None or _keys(self.report) != _keys(report)
-        self.report, self.traces = report, result.traces
+        self.report, self.traces, self.peaks = report, result.traces, result.peaks
         self._draw(self.doc.project, report)
         if changed:
             self.messages.show_message(summary(report), "finding" if report.findings else "info")
@@ -192,7 +195,7 @@ class FindingsOverlay(QObject):
                 shade = FindingShade(rect, finding.area, finding.kind, finding.describe())
                 scene.addItem(shade)
                 self.shades.append(shade)
-        self.rendered.draw(project, list(self.traces), geometry)
+        self.rendered.draw(project, list(self.traces), list(self.peaks), geometry)
 
     def close(self) -> None:
         """Stop checking (the window is closing)."""
@@ -208,12 +211,13 @@ def _check(
         report = check(project, info, hand=hand)
     except HapticTimelineError as exc:
         return exc
-    if not render or project.axis != "time":
+    if not render:
         return Checked(report)
     from timeline.limits.plot import traces
 
     try:
-        return Checked(report, tuple(traces(project, info, info.actuator, hand, "normal")))
+        drawn = tuple(traces(project, info, info.actuator, hand, "normal"))
+        return Checked(report, drawn, tuple(peaks_of(t) for t in drawn))
     except HapticTimelineError as exc:  # e.g. too short to render: the findings still stand
         return Checked(report, unrendered=f"Cannot show the rendered output: {exc}")
 

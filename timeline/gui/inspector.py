@@ -25,6 +25,8 @@ SCRUB_STEPS_PER_PX = 1.0  # one spin-box step per pixel dragged (Shift: a tenth)
 
 def param_unit(name: str, axis: str, generator: str = "") -> tuple[float, str]:
     """How a parameter is shown: the factor from stored value to shown value, and the unit."""
+    if generator == "emphasis":
+        return 1.0, " (0..1)"  # amplitude and frequency are both fractions
     if name in FREQUENCIES:
         return (1.0, " Hz") if axis == "time" else (2 * math.pi, " /turn")
     if name == "phase":
@@ -139,7 +141,9 @@ class Inspector(QWidget):
             box.setSuffix(unit)
             box.setKeyboardTracking(False)
             box.setSingleStep(0.01 if name == "length" and axis == "time" else 1.0)
-            if name in ("amplitude", "sustain", "depth", "duty", "value", "edge", "width"):
+            if name in ("amplitude", "sustain", "depth", "duty", "value", "edge", "width") or (
+                getattr(tile, "generator", "") == "emphasis"
+            ):
                 box.setSingleStep(0.01)
             box.editingFinished.connect(lambda n=name, b=box: self.commit(n, b.value()))
             box.setToolTip(f"{name}{(' in' + unit) if unit else ''}; type a value and press Enter")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from timeline.atomic import write_atomically
 from timeline.devices import Actuator, DeviceInfo, Hand
 from timeline.limits.check import Report
@@ -34,7 +36,8 @@ def plot_rendered(
     hand: Hand,
     quality: str = "normal",
 ) -> None:
-    """Write a PNG: each trace designed (grey) against rendered, findings shaded by area."""
+    """Write a PNG: each trace designed (grey) against rendered, findings shaded by area; over
+    time, or over the knob's angle on a position project."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -43,20 +46,21 @@ def plot_rendered(
     rows = traces(project, info, actuator, hand, quality)
     fig, axes = plt.subplots(len(rows), 1, figsize=(10, 2.6 * len(rows) + 0.8), squeeze=False)
     for ax, trace in zip(axes[:, 0], rows, strict=True):
-        ax.plot(trace.time, trace.designed * trace.scale, color="#95a5a6", lw=1.6,
+        along = trace.time if trace.angle is None else np.degrees(trace.angle)
+        ax.plot(along, trace.designed * trace.scale, color="#95a5a6", lw=1.6,
                 label="designed")  # fmt: skip
-        ax.plot(trace.time, trace.rendered * trace.scale, color="#c0392b", lw=0.8,
+        ax.plot(along, trace.rendered * trace.scale, color="#c0392b", lw=0.8,
                 label="rendered")  # fmt: skip
-        if project.axis == "time":
-            for n, f in enumerate(report.findings):
-                ax.axvspan(f.start, f.stop, color=COLOURS[f.area], alpha=0.15, lw=0,
-                           label=None if n else "findings")  # fmt: skip
+        scale = 1.0 if trace.axis == "time" else 180.0 / np.pi  # findings: s, or rad to deg
+        for n, f in enumerate(f for f in report.findings if f.axis == trace.axis):
+            ax.axvspan(f.start * scale, f.stop * scale, color=COLOURS[f.area], alpha=0.15,
+                       lw=0, label=None if n else "findings")  # fmt: skip
         ax.set_ylabel(f"{trace.label}\n[{trace.unit}]", fontsize=8)
         ax.set_title(f"largest gap {trace.worst_gap() * trace.scale:.3g} {trace.unit}",
                      fontsize=8, loc="right")  # fmt: skip
         ax.grid(True, alpha=0.3)
         ax.legend(loc="upper right", fontsize=8)
-    axes[-1, 0].set_xlabel("time [s]")
+    axes[-1, 0].set_xlabel("time [s]" if rows[-1].axis == "time" else "knob angle [deg]")
     kinds = sorted(report.kinds())
     fig.suptitle(
         f"rendered against designed on {info.name}: "

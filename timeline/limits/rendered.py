@@ -3,19 +3,22 @@
 * Vibration (a drive layer with an actuator, or a vibrotactile device): the drive clamped to the
   device's maximum, then through the actuator's response.
 * A knob: the project played on the simulated knob built from the device's declarations (rate,
-  maximum torque, rotor, estimator filters) with a hand; "designed" is the torque law evaluated
-  on the motion that happened with exact (zero-phase) derivatives of the angle, "rendered" is
-  the torque the motor applied: the difference is the clamp and the estimators' lag and noise.
+  maximum torque, rotor, delay, estimators) with a hand (turning, on a position project);
+  "designed" is the torque law evaluated on the motion that happened with exact (zero-phase)
+  derivatives of the angle, "rendered" is the torque the motor applied: the difference is the
+  clamp and the estimators' lag and noise.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.signal import savgol_filter
 
 from timeline.devices import Actuator, DeviceInfo, Hand, open_device
+from timeline.devices.hand import DEFAULT_TURN_DEG_PER_S
 from timeline.errors import HapticTimelineError
 from timeline.limits.design import Sampled
 from timeline.limits.device_checks import actuator_output
@@ -35,9 +38,20 @@ class Trace:
     time: np.ndarray
     designed: np.ndarray
     rendered: np.ndarray
+    angle: np.ndarray | None = None  # position projects: the table angle (rad) of each sample
+    step: float = 0.0  # axis units per cell to draw it in: a period, or the table's angle step
+
+    @property
+    def axis(self) -> str:
+        """The project axis the trace is drawn along: "time" or "position" (its angle)."""
+        return "time" if self.angle is None else "position"
 
     def worst_gap(self) -> float:
         """Largest |rendered - designed| (SI)."""
+        return self._gap
+
+    @cached_property
+    def _gap(self) -> float:  # once: the editor asks at every zoom, for every lane
         return float(np.abs(self.rendered - self.designed).max(initial=0.0))
 
 
@@ -51,17 +65,24 @@ def vibration(design: Sampled, info: DeviceInfo, actuator: Actuator | None) -> T
     time = design.start + np.arange(d.size) / design.rate
     unit, scale = ("mNm", 1e3) if info.kind == "kinesthetic" else ("% full scale", 100.0)
     name = actuator.name if actuator else info.name
-    return Trace(f"drive on {name}", unit, scale, time, d, out)
+    return Trace(f"drive on {name}", unit, scale, time, d, out, step=1.0 / design.rate)
 
 
 def knob(project: Project, info: DeviceInfo, hand: Hand, quality: str = "normal") -> Trace:
-    """The torque law against the torque applied, on a simulated knob with the device's numbers."""
-    options: dict[str, float] = {"rate": info.rate, "max_torque": info.max_output}
+    """The torque law against the torque applied, on a simulated knob with the device's numbers.
+
+    On a position project the hand turns the knob through the tables (at its own speed if it
+    turns, else the same hand at the default speed), and the trace also holds the angle.
+    """
+    options: dict[str, object] = {"rate": info.rate, "max_torque": info.max_output}
     if info.dynamics is not None:
         dyn = info.dynamics
-        options.update(inertia=dyn.inertia, viscous=dyn.damping,
+        options.update(inertia=dyn.inertia, viscous=dyn.damping, delay=int(dyn.delay),
                        velocity_cutoff=dyn.velocity_cutoff,
-                       acceleration_cutoff=dyn.acceleration_cutoff)  # fmt: skip
+                       acceleration_cutoff=dyn.acceleration_cutoff,
+                       estimator="kalman" if dyn.observer_gains else "filter")  # fmt: skip
+    if project.axis == "position" and hand.mode != "turn":
+        hand = Hand("turn", DEFAULT_TURN_DEG_PER_S, model=hand.model)
     with open_device("sim", **options) as sim:
         playback = prepare(project, sim.info, None, hand, quality)
         tel = sim.play(playback.program, hand)
@@ -75,4 +96,10 @@ def knob(project: Project, info: DeviceInfo, hand: Hand, quality: str = "normal"
     zero = np.zeros(len(tel))
     layer = {k: tel.layers.get(k, zero) for k in "dkbm"}
     designed = layer["d"] - layer["k"] * angle - layer["b"] * velocity - layer["m"] * acceleration
-    return Trace(f"torque on {info.name}, hand {hand}", "mNm", 1e3, tel.time, designed, tel.torque)
+    label = f"torque on {info.name}, hand {hand}"
+    if project.axis == "time":
+        return Trace(label, "mNm", 1e3, tel.time, designed, tel.torque, step=period)
+    program = playback.program
+    angle = program.origin + tel.angle
+    step = 1.0 / program.table_now().rate
+    return Trace(label, "mNm", 1e3, tel.time, designed, tel.torque, angle, step)
