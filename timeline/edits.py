@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_right
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 from typing import Any
 
@@ -254,6 +254,54 @@ def add_clip(
     project, clip_id = project.with_id("c")
     clip = Clip(id=clip_id, tile_id=tile_id, start=start, **fields)
     return _put_clip(project, clip, track_id, new=True), clip_id
+
+
+def add_clips(
+    project: Project,
+    items: Sequence[tuple[str, Tile | str, float, Mapping[str, Any]]],
+    tab: str = "Scratch",
+) -> tuple[Project, list[str]]:
+    """Many add_tile/add_clip steps in one pass: the same project and ids, in O(n log n).
+
+    Each item is (track id, a tile id or a new tile, start, clip fields); a new tile goes to the
+    library and `tab` before its clip (one tile object given twice is added once).
+    """
+    project.tab(tab)
+    ids = project.next_id
+    tiles = project.tiles.mutate()
+    new_tiles: dict[int, str] = {}
+    order: list[str] = []
+    pending: list[tuple[str, str, str, float, Mapping[str, Any]]] = []
+    for track_id, tile, start, fields in items:
+        project.track(track_id)
+        if isinstance(tile, str):
+            project.tile(tile)
+            tile_id = tile
+        elif id(tile) in new_tiles:
+            tile_id = new_tiles[id(tile)]
+        else:
+            tile_id = new_tiles[id(tile)] = f"tile{ids}"  # as Project.with_id names them
+            tiles[tile_id] = tile
+            order.append(tile_id)
+            ids += 1
+        pending.append((track_id, tile_id, f"c{ids}", start, fields))
+        ids += 1
+    palette = tuple(
+        replace(t, tile_ids=t.tile_ids + order) if t.name == tab else t for t in project.palette
+    )
+    project = replace(project, tiles=tiles.finish(), palette=palette)
+    added: dict[str, list[Clip]] = {}
+    for track_id, tile_id, clip_id, start, fields in pending:
+        given = {"source_in": 0.0, "source_out": project.tile(tile_id).duration, **fields}
+        clip = _check_source(project, Clip(id=clip_id, tile_id=tile_id, start=start, **given))
+        added.setdefault(track_id, []).append(clip)
+    tracks = tuple(
+        replace(t, clips=tuple(sorted(t.clips + tuple(added[t.id]), key=_order)))
+        if t.id in added
+        else t
+        for t in project.tracks
+    )
+    return replace(project, tracks=tracks, next_id=ids), [p[2] for p in pending]
 
 
 def remove_clips(project: Project, clip_ids: Iterable[str]) -> Project:

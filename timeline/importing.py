@@ -11,7 +11,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from timeline import edits
+from timeline import collector, edits
 from timeline.errors import EditError, HapticTimelineError
 from timeline.formats import (
     FormatError,
@@ -50,7 +50,8 @@ def read_file(
         if unused:
             raise FormatError(f"the {unused[0]} option does not apply to {fmt.name} files")
         try:
-            result = fmt.read(path, progress=progress, **given)
+            with collector.paused():  # a JSON design is millions of containers, none garbage
+                result = fmt.read(path, progress=progress, **given)
         except FormatError:
             raise
         except HapticTimelineError as exc:
@@ -103,21 +104,33 @@ def place(
     targets: dict[tuple[str, str], str] = {}  # (kind, source track name) -> project track id
     tile_ids: dict[int, str] = {}  # id(tile) -> project tile id: a tile placed twice is added once
     clip_ids: list[str] = []
+    batch: list = []  # clips placed in one pass (edits.add_clips) until a track is added
     for placement in imported.placements:
         if track_id is not None and placement.kind is None and not placement.track:
             target = track_id
         else:
-            kind_id = placement.kind or kind
-            project, target = _target_track(project, kind_id, placement.track, targets, infos)
-        if id(placement.tile) not in tile_ids:
-            project, tile_ids[id(placement.tile)] = edits.add_tile(project, placement.tile)
+            key = (placement.kind or kind, placement.track)
+            if key not in targets:  # may add a track: place what came before it first
+                project = _place_batch(project, batch, tile_ids, clip_ids)
+                batch = []
+            project, target = _target_track(project, key[0], placement.track, targets, infos)
         fields = dict(placement.clip)
         fields["gain"] = gain * fields.get("gain", 1.0)
-        project, clip_id = edits.add_clip(
-            project, target, tile_ids[id(placement.tile)], at + placement.start, **fields
-        )
-        clip_ids.append(clip_id)
-    return project, clip_ids
+        tile = tile_ids.get(id(placement.tile), placement.tile)
+        batch.append((target, tile, at + placement.start, fields))
+    return _place_batch(project, batch, tile_ids, clip_ids), clip_ids
+
+
+def _place_batch(
+    project: Project, batch: list, tile_ids: dict[int, str], clip_ids: list[str]
+) -> Project:
+    """Place a batch of clips; note the ids its new tiles and clips got."""
+    project, placed = edits.add_clips(project, batch)
+    for (_, tile, _, _), clip_id in zip(batch, placed, strict=True):
+        if not isinstance(tile, str):
+            tile_ids[id(tile)] = project.find_clip(clip_id)[1].tile_id
+    clip_ids += placed
+    return project
 
 
 def _check_start(project: Project, at: float) -> None:

@@ -101,9 +101,8 @@ def place_design_clip(
     project, clip_id = edits.add_clip(project, track_id, tile_id, at)
     if accents:
         project, accent_track = _emphasis_track(project, track_id)
-        for e in accents:
-            project, tile_id = edits.add_tile(project, emphasis_tile(e))
-            project, _ = edits.add_clip(project, accent_track, tile_id, at + e.time)
+        clips = [(accent_track, emphasis_tile(e), at + e.time, {}) for e in accents]
+        project, _ = edits.add_clips(project, clips)
     return project, clip_id
 
 

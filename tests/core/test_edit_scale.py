@@ -7,6 +7,7 @@ import os
 import subprocess
 import sys
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -83,3 +84,30 @@ def test_saved_bytes_do_not_depend_on_the_hash_seed():
     text = outputs.pop()
     assert text.index('"tile9"') < text.index('"tile10"')
     assert projectfile.dumps(projectfile.loads(text)) == text
+
+
+def test_add_clips_in_one_pass_is_add_tile_and_add_clip_step_by_step():
+    p = edits.new_project(templates=False)
+    p, a = edits.add_track(p, "drive")
+    p, b = edits.add_track(p, "drive")
+    p, sine = edits.add_tile(p, generator("sine", 1.0, frequency=5.0))
+    shared = generator("ramp", 0.5)
+    items = [
+        (a, shared, 2.0, {}),
+        (b, sine, 0.25, {"gain": 0.5}),
+        (a, generator("sine", 0.01, frequency=200.0), 0.0, {"source_out": 0.005}),
+        (a, shared, 2.0, {"reverse": True}),  # the same tile object again, the same start
+        (b, generator("constant", 0.2), 0.1, {}),
+    ]
+    step, ids = p, []
+    added: dict[int, str] = {}
+    for track, tile, start, fields in items:
+        if not isinstance(tile, str) and id(tile) not in added:
+            step, added[id(tile)] = edits.add_tile(step, tile)
+        tile_id = tile if isinstance(tile, str) else added[id(tile)]
+        step, clip = edits.add_clip(step, track, tile_id, start, **fields)
+        ids.append(clip)
+    bulk, bulk_ids = edits.add_clips(p, items)
+    assert bulk == step and bulk_ids == ids
+    with pytest.raises(EditError, match="would play"):
+        edits.add_clips(p, [(a, sine, 0.0, {"source_out": 2.0})])
