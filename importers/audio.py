@@ -154,22 +154,32 @@ class AudioFormat:
         done = 0
         block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=np.float64)
         mono = np.empty(block.shape[0], dtype=np.float64)
+        # one channel of exact float32 values is decoded by libsndfile into the store itself
+        direct = f.channels == 1 and store.exact_float32
         try:
             while done < total:
-                n = f.read(out=block[: min(BLOCK_FRAMES, total - done)]).shape[0]
+                want = min(BLOCK_FRAMES, total - done)
+                if direct:
+                    part = store.reserve(want, total)
+                    n = f.read(out=part.reshape(-1, 1)).shape[0]
+                else:
+                    n = f.read(out=block[:want]).shape[0]
+                    part = mono
+                    if keep is None:
+                        _mean_of_channels(block[:n], part[:n])
+                    else:
+                        part[:n] = block[:n, keep]
                 if n == 0:
                     break
-                part = mono[:n]
-                if keep is None:
-                    _mean_of_channels(block[:n], part)
-                else:
-                    part[:] = block[:n, keep]
-                bad = first_non_finite(part) if scan else None
+                bad = first_non_finite(part[:n]) if scan else None
                 if bad is not None:
                     raise FormatError(
                         f"{path.name} has a sample that is not a finite number (frame {done + bad})"
                     )
-                store.append(part, total)
+                if direct:
+                    store.commit(n)
+                else:
+                    store.append(part[:n], total)
                 done += n
                 if progress is not None:
                     progress(done / total)
