@@ -50,7 +50,8 @@ class SampleStore:
         return self.out.dtype == np.float32 and not self._checked
 
     def append(self, part: np.ndarray, total: int) -> None:
-        """Store the next float64 samples; `total` is the most the file can hold."""
+        """Store the next samples (float64, or float32 if exact_float32); `total` is the most the
+        file can hold."""
         if self._checked and self.out.dtype == np.float32 and not exact_in_float32(part):
             self._moved(np.float64, self.out.size)
         self.reserve(len(part), total)[:] = part

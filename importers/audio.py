@@ -152,9 +152,12 @@ class AudioFormat:
         )
         scan = not _integer_subtype(f.subtype)
         done = 0
-        block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=np.float64)
-        mono = np.empty(block.shape[0], dtype=np.float64)
-        # one channel of exact float32 values is decoded by libsndfile into the store itself
+        # Values known to be float32 exactly are decoded as float32 (a channel kept, or the mean of
+        # two integer channels, is then exact in float32 too), and one channel of them straight
+        # into the store itself; anything else goes through float64.
+        precision = np.float32 if store.exact_float32 else np.float64
+        block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=precision)
+        mono = np.empty(block.shape[0], dtype=precision)
         direct = f.channels == 1 and store.exact_float32
         try:
             while done < total:
