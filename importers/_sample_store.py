@@ -43,16 +43,30 @@ class SampleStore:
         self._checked = self.out.dtype == np.float32 and not known_exact(subtype, mixed_channels)
         self._key = ContentKey(self.out.dtype)
 
+    @property
+    def exact_float32(self) -> bool:
+        """True when the store is float32 and every sample is known to be one exactly: a reader
+        may then decode straight into reserve()d slots as float32 (no float64 block, no copy)."""
+        return self.out.dtype == np.float32 and not self._checked
+
     def append(self, part: np.ndarray, total: int) -> None:
-        """Store the next float64 samples; `total` is the most the file can hold."""
+        """Store the next samples (float64, or float32 if exact_float32); `total` is the most the
+        file can hold."""
         if self._checked and self.out.dtype == np.float32 and not exact_in_float32(part):
             self._moved(np.float64, self.out.size)
-        if self.size + len(part) > self.out.size:
-            self._moved(self.out.dtype, min(total, 2 * (self.size + len(part))))
-        stored = self.out[self.size : self.size + len(part)]
-        stored[:] = part
-        self._key.update(stored)
-        self.size += len(part)
+        self.reserve(len(part), total)[:] = part
+        self.commit(len(part))
+
+    def reserve(self, count: int, total: int) -> np.ndarray:
+        """The next `count` slots of the store, to fill in place and then commit()."""
+        if self.size + count > self.out.size:
+            self._moved(self.out.dtype, min(total, 2 * (self.size + count)))
+        return self.out[self.size : self.size + count]
+
+    def commit(self, count: int) -> None:
+        """Keep the next `count` reserved slots as samples (and hash them)."""
+        self._key.update(self.out[self.size : self.size + count])
+        self.size += count
 
     def _moved(self, dtype: type, size: int) -> None:
         """Copy what is stored into a new array (wider or larger), within the memory available."""

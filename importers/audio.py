@@ -152,24 +152,37 @@ class AudioFormat:
         )
         scan = not _integer_subtype(f.subtype)
         done = 0
-        block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=np.float64)
-        mono = np.empty(block.shape[0], dtype=np.float64)
+        # Values known to be float32 exactly are decoded as float32 (a channel kept, or the mean of
+        # two integer channels, is then exact in float32 too), and one channel of them straight
+        # into the store itself; anything else goes through float64.
+        precision = np.float32 if store.exact_float32 else np.float64
+        block = np.empty((min(BLOCK_FRAMES, total), f.channels), dtype=precision)
+        mono = np.empty(block.shape[0], dtype=precision)
+        direct = f.channels == 1 and store.exact_float32
         try:
             while done < total:
-                n = f.read(out=block[: min(BLOCK_FRAMES, total - done)]).shape[0]
+                want = min(BLOCK_FRAMES, total - done)
+                if direct:
+                    part = store.reserve(want, total)
+                    n = f.read(out=part.reshape(-1, 1)).shape[0]
+                else:
+                    n = f.read(out=block[:want]).shape[0]
+                    part = mono
+                    if keep is None:
+                        _mean_of_channels(block[:n], part[:n])
+                    else:
+                        part[:n] = block[:n, keep]
                 if n == 0:
                     break
-                part = mono[:n]
-                if keep is None:
-                    _mean_of_channels(block[:n], part)
-                else:
-                    part[:] = block[:n, keep]
-                bad = first_non_finite(part) if scan else None
+                bad = first_non_finite(part[:n]) if scan else None
                 if bad is not None:
                     raise FormatError(
                         f"{path.name} has a sample that is not a finite number (frame {done + bad})"
                     )
-                store.append(part, total)
+                if direct:
+                    store.commit(n)
+                else:
+                    store.append(part[:n], total)
                 done += n
                 if progress is not None:
                     progress(done / total)

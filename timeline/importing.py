@@ -11,7 +11,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from timeline import edits
+from timeline import collector, edits
 from timeline.errors import EditError, HapticTimelineError
 from timeline.formats import (
     FormatError,
@@ -50,7 +50,8 @@ def read_file(
         if unused:
             raise FormatError(f"the {unused[0]} option does not apply to {fmt.name} files")
         try:
-            result = fmt.read(path, progress=progress, **given)
+            with collector.paused():  # a JSON design is millions of containers, none garbage
+                result = fmt.read(path, progress=progress, **given)
         except FormatError:
             raise
         except HapticTimelineError as exc:

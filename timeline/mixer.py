@@ -428,12 +428,8 @@ class Mixer:
         out.fill(0.0)
         scratch = np.empty(BLOCK)
         adder = _adder(window.starts, window.ends)
-        for p in window.placed:
-            x, a = self._shape_values(p, grid), p.i0
-            while a < p.i1:  # in the same pieces as _sum adds, so the sums are bit-identical
-                z = min(p.i1, (a // BLOCK + 1) * BLOCK)
-                adder(out[a:z], x[a - p.i0 : z - p.i0], p.weight, scratch)
-                a = z
+        for p in window.placed:  # each sample's sum rounds alike however a clip is cut
+            adder(out[p.i0 : p.i1], self._shape_values(p, grid), p.weight, scratch)
         _check_finite(out, grid, 0)
         self.stats.block_sums += -(-grid.n // BLOCK)
 
@@ -449,17 +445,21 @@ class Mixer:
 
 
 def _numpy_add(out: np.ndarray, x: np.ndarray, weight: float, scratch: np.ndarray) -> None:
-    """out += weight * x through a scratch piece (x at most one block long): numpy, two passes."""
-    tmp = scratch[: len(x)]
-    np.multiply(x, weight, out=tmp)
-    np.add(out, tmp, out=out)
+    """out += weight * x with numpy, a scratch-sized piece at a time: scale, then add."""
+    step = len(scratch)
+    for a in range(0, len(x), step):
+        z = min(a + step, len(x))
+        tmp = scratch[: z - a]
+        np.multiply(x[a:z], weight, out=tmp)
+        np.add(out[a:z], tmp, out=out[a:z])
 
 
 def _adder(starts: np.ndarray, ends: np.ndarray) -> Callable:
-    """How to add a clip's piece, (out, x, weight, scratch) -> None.
+    """How to add a clip or a piece of one, (out, x, weight, scratch) -> None.
 
-    Both ways round the product, then add it (two roundings, on one thread, whatever BLAS
-    threads a loaded machine runs), so sums are bit-identical whichever is used; the compiled
+    Both ways round the product, then add it (two roundings per sample, on one thread, whatever
+    BLAS threads a loaded machine runs), so sums are bit-identical whichever is used and however
+    a clip is cut (a full sum adds whole clips, a partial one block pieces). The compiled
     one-pass loop is taken once numba is loaded, or when the clips cover enough samples to
     repay loading it.
     """

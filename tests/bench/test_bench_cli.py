@@ -47,3 +47,21 @@ def test_list_names_every_benchmark(capsys) -> None:
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
                      "estimator", "accumulation", "edit-to-feel", "scale", "convert",
                      "formats", "waves"]  # fmt: skip
+
+
+def test_each_benchmark_module_is_named_as_listed() -> None:
+    from timeline.bench import MODULES, benchmarks
+
+    assert {name: module.NAME for name, module in benchmarks().items()} == {n: n for n in MODULES}
+
+
+def test_running_one_benchmark_loads_only_its_module(tmp_path: Path) -> None:
+    probe = (
+        "import sys; from timeline.cli.main import main; "
+        f"main(['bench', '--quick', 'waves', '--out', {str(tmp_path)!r}]); "
+        "print(sorted(m for m in sys.modules if m.startswith('timeline.bench.')))"
+    )
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True)
+    assert (
+        done.stdout.strip().splitlines()[-1] == "['timeline.bench.report', 'timeline.bench.waves']"
+    )

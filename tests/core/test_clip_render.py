@@ -196,7 +196,7 @@ def test_sampled_tile_at_another_rate_is_resampled_band_limited():
 FADE_SHAPES = st.sampled_from(["linear", "equal-power", "exponential", "s-curve"])
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(
     st.floats(0.01, 3.0),
     st.floats(0.0, 1.0),

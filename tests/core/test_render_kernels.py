@@ -18,7 +18,7 @@ from timeline.render_kernels import fourier_real, scaled_add
 ANY_FLOAT = st.floats(allow_nan=False, allow_infinity=False, width=64)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(
     arrays(np.float64, st.integers(0, 300), elements=ANY_FLOAT),
     st.data(),
@@ -28,7 +28,7 @@ def test_scaled_add_rounds_like_numpy_multiply_then_add(x, data, weight):
     out = data.draw(arrays(np.float64, x.shape, elements=ANY_FLOAT))
     expected = out.copy()
     with np.errstate(over="ignore", invalid="ignore"):
-        mixer._numpy_add(expected, x, weight, np.empty(x.size))
+        mixer._numpy_add(expected, x, weight, np.empty(7))  # in pieces of 7
     scaled_add(out, x, weight)
     assert np.array_equal(out, expected, equal_nan=True)  # overflow: inf/nan in both alike
 

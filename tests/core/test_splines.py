@@ -68,7 +68,7 @@ def test_a_spline_tile_evaluates_through_its_points_without_scipy_objects():
     assert type(tile._curve).__module__ == "timeline.splines"
 
 
-@settings(max_examples=120, deadline=None)
+@settings(max_examples=60, deadline=None)
 @given(
     st.lists(
         st.tuples(st.floats(0, 100), st.floats(-1e6, 1e6)),

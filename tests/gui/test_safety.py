@@ -7,6 +7,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 from pathlib import Path
 
@@ -14,6 +15,7 @@ import numpy as np
 import pytest
 import soundfile
 
+from timeline import projectfile
 from timeline.gui import autosave
 
 CHILD = textwrap.dedent(
@@ -101,3 +103,48 @@ def test_export_writes_only_when_finished_and_cancel_leaves_no_file(window, qtbo
     qtbot.waitUntil(lambda: not window.jobs, timeout=10_000)
     assert not target2.exists()
     assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".out2")) == []
+
+
+def _held_save(monkeypatch):
+    """projectfile.save as the autosaver calls it, held until the returned event is set."""
+    started, release = threading.Event(), threading.Event()
+    real_save = autosave.projectfile.save
+
+    def held(project, path):
+        started.set()
+        assert release.wait(20)
+        real_save(project, path)
+
+    monkeypatch.setattr(autosave.projectfile, "save", held)
+    return started, release
+
+
+def test_autosave_writes_on_its_own_thread_while_the_editor_goes_on(window, monkeypatch):
+    started, release = _held_save(monkeypatch)
+    saver = window.autosaver
+    window.doc.select_clips([window.ids["c1"]])
+    window.reverse()
+    snapshot = window.doc.project
+    saver.save_now()
+    assert started.wait(10) and saver.writer.is_alive()  # the write waits; the GUI thread does not
+    window.reverse()  # an edit while the write runs
+    saver.save_now()  # a second write would race the first: it is put off to the next idle time
+    assert saver.timer.isActive()
+    release.set()
+    saver.writer.join()
+    saved = projectfile.load(saver.path)
+    assert saved.find_clip(window.ids["c1"])[1] == snapshot.find_clip(window.ids["c1"])[1]
+    assert saved.find_clip(window.ids["c1"])[1].reverse is True
+
+
+def test_a_discard_waits_for_the_write_and_leaves_no_autosave(window, monkeypatch):
+    started, release = _held_save(monkeypatch)
+    saver = window.autosaver
+    window.doc.select_clips([window.ids["c1"]])
+    window.reverse()
+    saver.save_now()
+    assert started.wait(10)
+    threading.Timer(0.2, release.set).start()  # the write finishes while discard waits for it
+    saver.discard()
+    assert not saver.writer.is_alive()
+    assert not saver.path.exists() and not saver.path.with_suffix(".json").exists()

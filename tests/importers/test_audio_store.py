@@ -158,3 +158,14 @@ def test_corpus_recordings_are_stored_exactly(corpus):
         tile = audio.FORMAT.read(path)
         assert tile.data.dtype == np.float32, path.name
         np.testing.assert_array_equal(tile.data.astype(np.float64), _expected(path, None))
+
+
+@pytest.mark.parametrize("container", ["FLAC", "AIFF", "WAV"])
+def test_one_channel_decoded_straight_into_the_store_is_exact(tmp_path, container, monkeypatch):
+    monkeypatch.setattr(audio, "BLOCK_FRAMES", 1000)  # several blocks, the last one partial
+    path = tmp_path / f"mono.{container.lower()}"
+    sf.write(path, _pcm(24, 4321, 1), 22_050, subtype="PCM_24", format=container)
+    tile = audio.FORMAT.read(path)
+    assert tile.data.dtype == np.float32
+    np.testing.assert_array_equal(tile.data.astype(np.float64), _expected(path, None))
+    assert tile.key == content_key(tile.data, 22_050.0)

@@ -10,27 +10,25 @@ from __future__ import annotations
 import importlib
 from types import ModuleType
 
-MODULES = (
-    "timeline.bench.examples",
-    "timeline.bench.mixer_speed",
-    "timeline.bench.quality_presets",
-    "timeline.bench.resampler",
-    "timeline.bench.sim_integrators",
-    "timeline.bench.sim_speed",
-    "timeline.bench.estimator",
-    "timeline.bench.accumulation",
-    "timeline.bench.edit_to_feel",
-    "timeline.bench.scale",
-    "timeline.bench.convert",
-    "timeline.bench.formats",
-    "timeline.bench.waves",
-)
+MODULES = {  # benchmark name -> module, in running order
+    "examples": "timeline.bench.examples",
+    "mixer": "timeline.bench.mixer_speed",
+    "quality": "timeline.bench.quality_presets",
+    "resampler": "timeline.bench.resampler",
+    "integrators": "timeline.bench.sim_integrators",
+    "sim-speed": "timeline.bench.sim_speed",
+    "estimator": "timeline.bench.estimator",
+    "accumulation": "timeline.bench.accumulation",
+    "edit-to-feel": "timeline.bench.edit_to_feel",
+    "scale": "timeline.bench.scale",
+    "convert": "timeline.bench.convert",
+    "formats": "timeline.bench.formats",
+    "waves": "timeline.bench.waves",
+}
 
 
-def benchmarks() -> dict[str, ModuleType]:
-    """Benchmark name -> module, in running order."""
-    found = {}
-    for path in MODULES:
-        module = importlib.import_module(path)
-        found[module.NAME] = module
-    return found
+def benchmarks(names: list[str] | None = None) -> dict[str, ModuleType]:
+    """Benchmark name -> module, in running order: all, or only `names` (the other modules, and
+    what they import, stay unloaded)."""
+    chosen = list(MODULES) if not names else [n for n in MODULES if n in names]
+    return {name: importlib.import_module(MODULES[name]) for name in chosen}

@@ -24,18 +24,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.bench import benchmarks
+    from timeline.bench import MODULES, benchmarks
 
-    found = benchmarks()
     if args.list:
-        for name, module in found.items():
+        for name, module in benchmarks().items():
             print(f"{name:14} {module.SUMMARY}")
         return 0
-    unknown = [w for w in args.which if w not in found]
+    unknown = [w for w in args.which if w not in MODULES]
     if unknown:
         raise HapticTimelineError(
-            f"there is no benchmark {unknown[0]!r} (choose from {', '.join(found)})"
+            f"there is no benchmark {unknown[0]!r} (choose from {', '.join(MODULES)})"
         )
+    found = benchmarks(args.which)
     chosen = args.which or list(found)
     args.out.mkdir(parents=True, exist_ok=True)
     report = []

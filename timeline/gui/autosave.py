@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -76,7 +77,13 @@ def recoverable() -> list[Recoverable]:
 
 
 class Autosaver(QObject):
-    """Writes the document to the autosave folder once it has been idle for IDLE_MS."""
+    """Writes the document to the autosave folder once it has been idle for IDLE_MS.
+
+    The write runs on a thread of its own (a project is immutable, so the snapshot taken when the
+    editor goes idle cannot change under it): saving a project that holds an hour of audio takes
+    tens of seconds, and the editor stays usable meanwhile. One write runs at a time; an idle
+    moment during a write autosaves again after the next interval.
+    """
 
     def __init__(self, doc: Document, idle_ms: int = IDLE_MS) -> None:
         super().__init__()
@@ -87,19 +94,40 @@ class Autosaver(QObject):
         self.timer.timeout.connect(self.save_now)
         doc.changed.connect(lambda _: self.timer.start())
         self.path = autosave_dir() / f"session-{os.getpid()}.htl"
+        self.writer: threading.Thread | None = None
+        self._writing = threading.Lock()  # held while the files are written or removed
+        self._discards = 0  # a write started before the latest discard leaves nothing behind
 
     def save_now(self) -> None:
-        """Write the autosave (only when there are unsaved changes)."""
+        """Start writing the autosave (only when there are unsaved changes)."""
         if not self.doc.modified:
             self.discard()
             return
+        if self.writer is not None and self.writer.is_alive():
+            self.timer.start()  # the project changed while a write ran: write again later
+            return
         meta = {"pid": os.getpid(), "path": str(self.doc.path) if self.doc.path else ""}
-        text = json.dumps(meta).encode("utf-8")  # the companion first: a kill between the two
-        write_atomically(self.path.with_suffix(".json"), lambda tmp: tmp.write_bytes(text))
-        projectfile.save(self.doc.project, self.path)  # leaves the previous autosave, still found
+        self.writer = threading.Thread(
+            target=self._write,
+            args=(self.doc.project, meta, self._discards),
+            name="autosave",
+            daemon=True,
+        )
+        self.writer.start()
+
+    def _write(self, project: Project, meta: dict, discards: int) -> None:
+        with self._writing:
+            if discards != self._discards:
+                return
+            text = json.dumps(meta).encode("utf-8")  # the companion first: a kill between the two
+            write_atomically(self.path.with_suffix(".json"), lambda tmp: tmp.write_bytes(text))
+            projectfile.save(project, self.path)  # leaves the previous autosave, still found
 
     def discard(self) -> None:
-        """Remove this session's autosave (after a save or a clean close)."""
+        """Remove this session's autosave (after a save or a clean close); a write in progress
+        is waited for, and one not yet started will not write."""
         self.timer.stop()
-        self.path.unlink(missing_ok=True)
-        self.path.with_suffix(".json").unlink(missing_ok=True)
+        self._discards += 1
+        with self._writing:
+            self.path.unlink(missing_ok=True)
+            self.path.with_suffix(".json").unlink(missing_ok=True)

@@ -1,11 +1,12 @@
 """Min/max peak summaries per zoom level, so long recordings draw as fast as short ones.
 
 Qt-free. Level 0 holds min/max per BASE samples, each further level per FACTOR times more (the
-Audacity summary idea); a query picks the coarsest level that still has two blocks per column.
-The samples themselves are referenced, not copied, and the levels are float32 (an hour at
-44.1 kHz adds 2 x 10 MB for the first level and 1/7 of that for the rest), built in chunks
-without a full-size temporary, and a query reduces only the blocks its columns cover (at most
-2 x BASE samples per column), so a paint costs the same at every zoom.
+Audacity summary idea, whose first summary is also per 256 samples); a query picks the coarsest
+level that still has two blocks per column, or the samples themselves below that. The samples
+are referenced, not copied, and the levels are float32 (an hour at 44.1 kHz adds 2 x 2.5 MB for
+the first level and 1/7 of that for the rest), built in chunks without a full-size temporary, and
+a query reduces only the blocks its columns cover (at most 2 x BASE samples per column), so a
+paint costs the same at every zoom.
 """
 
 from __future__ import annotations
@@ -14,9 +15,9 @@ from collections import OrderedDict
 
 import numpy as np
 
-BASE = 64
+BASE = 256
 FACTOR = 8
-CHUNK = BASE << 14  # samples summarised at a time while building the first level
+CHUNK = BASE << 12  # samples summarised at a time while building the first level
 
 
 class PeakPyramid:
