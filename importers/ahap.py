@@ -51,6 +51,7 @@ DEFAULT_INTENSITY = 1.0
 DEFAULT_SHARPNESS = 0.5
 DUCKING = 0.8  # Meta's converter: intensity control x 0.8 at a point that carries an emphasis
 READ_TOLERANCE = 0.005  # amplitude: design vs the player's curve
+SAME_TIME = 1e-9  # s: a control point this close to a transient is at it (curve times are relative)
 WRITE_TOLERANCE = 0.01  # amplitude (and frequency): the player's curve vs the design
 CREATED = "haptic-timeline"
 LINEAR_NOTE = "sharpness = frequency"
@@ -433,11 +434,18 @@ def _curves(pid: str, points: list[tuple[float, float]]) -> list[dict[str, Any]]
 
 
 def _unducked(points: list[tuple[float, float]], times: set[float]) -> list[tuple[float, float]]:
-    """Control points with the first at each emphasis time raised back by 1 / DUCKING."""
+    """Control points with the first at each emphasis time raised back by 1 / DUCKING.
+
+    A point's absolute time is its curve's start plus its relative time, which can miss the
+    transient's time by an ulp; within SAME_TIME counts as the same moment.
+    """
+    marks = np.array(sorted(times))
     out, done = [], set()
     for t, v in points:
-        if t in times and t not in done:
-            done.add(t)
+        k = int(np.searchsorted(marks, t))
+        near = [m for m in marks[max(k - 1, 0) : k + 1].tolist() if abs(m - t) <= SAME_TIME]
+        if near and near[0] not in done:
+            done.add(near[0])
             v = min(1.0, v / DUCKING)
         out.append((t, v))
     return out

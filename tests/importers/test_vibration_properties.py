@@ -6,7 +6,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from importers.ahap import READ_TOLERANCE, WRITE_TOLERANCE
@@ -66,6 +66,9 @@ def test_haptic_round_trip_is_exact(design):
 
 @PROPERTY
 @given(designs())
+# found by CI's fuzzing: an emphasis on the last breakpoint, whose control point's absolute time
+# (curve start + relative time) missed the transient's by an ulp, so its ducking was not undone
+@example(VibrationDesign(((0.531, 0.0), (1.812, 1.0)), (), (Emphasis(1.812, 0.0, 0.0),), 1.812))
 def test_ahap_round_trip_stays_within_the_stated_bound(design):
     back = _round_trip(design, ".ahap")
     t0, t1 = design.amplitude[0][0], design.amplitude[-1][0]
