@@ -318,3 +318,18 @@ def test_frequency_breakpoints_are_edited_as_points_and_the_rendered_carrier_fol
         tile_edits.move_point(p, tile, 0, 0.5, 0.5, "loudness")
     with pytest.raises(EditError, match="finite"):
         tile_edits.add_point(p, tile, 0.7, float("nan"), tile_edits.FREQUENCY)
+
+
+def test_a_design_clip_s_emphasis_are_those_on_the_emphasis_track_within_its_span():
+    from timeline.vibration import emphasis_of, with_emphasis
+
+    p = _project(at=1.0)  # the design over 1..2 s, its emphasis (both at 1.5 s) below
+    design, accents = p.tracks[0].clips[0].id, [c.id for c in p.tracks[1].clips]
+    assert emphasis_of(p, design) == accents
+    assert with_emphasis(p, [accents[1], design]) == [accents[1], design, accents[0]]
+    assert emphasis_of(p, accents[0]) == []  # an emphasis carries nothing
+    p = edits.trim_clip(p, design, end=1.4)  # the design now ends before its emphasis
+    assert emphasis_of(p, design) == []
+    p = _project(at=1.0)
+    p = edits.move_track(p, p.tracks[1].id, 0)  # the Emphasis track is no longer below it
+    assert emphasis_of(p, p.tracks[1].clips[0].id) == []
