@@ -34,6 +34,7 @@ class KnobParams:
     observer_noise: float = NOISE  # the Kalman observer's noise, fraction of a 3-point estimate's
     observer_bandwidth: float = 1000.0  # Hz: where the tracking observer's three poles sit
     gains: tuple[float, ...] = ()  # an observer's L as a firmware holds it; () = from the above
+    # (a device option takes "l0,l1,l2")
     slew: float = 0.0  # N*m/s the amplifier's output may change by at most; 0 = no limit
     delay: int = 0  # servo periods between reading the encoder and applying its torque (0 or 1)
     watchdog_timeout: float = 0.005  # s without a block before the torque starts ramping down
@@ -56,12 +57,8 @@ class KnobParams:
                 "the knob's observer noise is a fraction between 0 and 1, "
                 f"not {self.observer_noise}"
             )
-        if self.gains and (
-            self.estimator == "filter"
-            or len(self.gains) != 3
-            or not all(math.isfinite(g) for g in self.gains)
-        ):
-            raise DeviceError(f"the knob's observer gains are three numbers, not {self.gains}")
+        if self.gains:
+            object.__setattr__(self, "gains", _gains(self.gains, self.estimator))
         if self.delay not in (0, 1):
             raise DeviceError(f"the knob's delay is 0 or 1 servo period, not {self.delay}")
         if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
@@ -103,3 +100,18 @@ class KnobParams:
     def smoothing(self, cutoff: float) -> float:
         """Gain of a first-order low-pass at a cut-off (1.0 = no filtering)."""
         return 1.0 if cutoff <= 0 else 1.0 - math.exp(-2.0 * math.pi * cutoff / self.rate)
+
+
+def _gains(value: object, estimator: str) -> tuple[float, float, float]:
+    """An observer's L from three numbers or "l0,l1,l2" (a device option), or DeviceError."""
+    parts = value.split(",") if isinstance(value, str) else value
+    try:
+        gains = tuple(float(g) for g in parts)  # type: ignore[union-attr]
+    except (TypeError, ValueError):
+        gains = ()
+    if estimator == "filter" or len(gains) != 3 or not all(math.isfinite(g) for g in gains):
+        raise DeviceError(
+            f"the knob's observer gains are three finite numbers l0,l1,l2 for a kalman or "
+            f"tracking estimator, not {value!r} for {estimator}"
+        )
+    return gains

@@ -17,7 +17,7 @@ from device.usb import protocol as p
 from device.usb.emulated import EmulatedBackend, EmulatedDevice
 from device.usb.firmware import EmulatedKnob
 from tests.limits.designs import layered
-from timeline.devices import CoefficientBlock, Hand
+from timeline.devices import CoefficientBlock, DeviceError, Hand
 from timeline.limits import servo
 from timeline.limits.check import check
 from timeline.limits.rendered import knob as rendered_knob
@@ -166,3 +166,12 @@ def test_rendered_runs_the_declared_tracking_observer_not_a_kalman_one() -> None
     tracking = rendered_knob(project, _sim("tracking").info, hand)
     np.testing.assert_allclose(trace.rendered, tracking.rendered, rtol=0, atol=1e-6)
     assert np.abs(trace.rendered - as_kalman.rendered).max() > 1e-5
+
+
+def test_the_sim_runs_gains_given_as_a_device_option() -> None:
+    declared = _usb().info.dynamics.observer_gains
+    text = ",".join(repr(g) for g in declared)
+    assert SimKnob(delay=1, gains=text).info.dynamics.observer_gains == declared
+    for bad, estimator in (("1,2", "kalman"), ("a,b,c", "kalman"), (declared, "filter")):
+        with pytest.raises(DeviceError, match="observer gains are three finite numbers"):
+            SimKnob(estimator=estimator, gains=bad)
