@@ -57,15 +57,20 @@ def test_menu_command_imports_the_design_and_the_sound(window, qtbot, monkeypatc
     assert len(project.tracks) == tracks_before + 2 and project.tracks[-1].kind == "audio"
     # the emphasis: clips of their own on a drive track just under the design's
     assert (project.tracks[1].kind, project.tracks[1].name) == ("drive", "Emphasis")
+    # the cursor is at 0 s, where the first drive track's sine (0.5-1.5 s) leaves no room for
+    # 1.2 s: like any import, the design, its emphasis and the sound all land at 1.5 s together
     expected = design_of_analysis(analyse_file(bursts))
-    assert [c.start for c in project.tracks[1].clips] == [e.time for e in expected.emphasis]
+    assert [c.start for c in project.tracks[1].clips] == [1.5 + e.time for e in expected.emphasis]
     sound, _ = soundfile.read(bursts)
-    np.testing.assert_allclose(render_sound(project, 0.0, 1.2, RATE), sound, atol=1e-6)
-    # the design is an editable envelope tile on the first drive track, at the cursor (0 s)
-    placed = [c for c in project.tracks[0].clips if c.start == 0.0]
+    np.testing.assert_allclose(render_sound(project, 1.5, 2.7, RATE), sound, atol=1e-6)
+    assert not render_sound(project, 0.0, 1.5, RATE).any()
+    # the design is an editable envelope tile on the first drive track, after the sine
+    placed = [c for c in project.tracks[0].clips if c.start == 1.5]
     tiles = [project.tile(c.tile_id) for c in placed]
     designs = [t.design for t in tiles if isinstance(t, VibrationTile)]
     assert designs == [dataclasses.replace(expected, emphasis=())]
+    new = [*placed, *project.tracks[1].clips, *project.tracks[-1].clips]
+    assert set(win.doc.selected_clips) == {c.id for c in new}
     assert win.sound_import.dock.isVisible()
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
     assert len(win.doc.project.tracks) == tracks_before  # one step took both away
@@ -99,16 +104,18 @@ def test_clashing_settings_are_one_sentence_in_the_panel(window, bursts):
     assert "frequency_min" in panel.error.text() and win.doc.project is before
 
 
-def test_alt_drop_on_a_drive_lane_converts_there(window, qtbot, bursts):
+def test_alt_drop_on_a_drive_lane_converts_there_or_in_the_next_gap(window, qtbot, bursts):
     win = window
-    lane = win.view.geometry.lane_top(1) + 30  # the second drive track
-    drop_files(win, [bursts], view_point(win, QPointF(2.0 * PX, lane)), ALT)
-    qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
-    project = win.doc.project
-    placed = project.track(win.ids["t2"]).clips[-1]
-    assert placed.start == pytest.approx(2.0, abs=1 / PX)
-    audio = project.tracks[-1]
-    assert audio.kind == "audio" and audio.clips[0].start == placed.start
+    lane = win.view.geometry.lane_top(1) + 30  # the second drive track: a ramp at 2.0-2.5 s
+    for seconds, expected in ((3.0, 3.0), (2.0, 4.2)):  # 2.0: covered; 2.5-3.0 is too short
+        drop_files(win, [bursts], view_point(win, QPointF(seconds * PX, lane)), ALT)
+        qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
+        win.messages.show_message("")
+        project = win.doc.project
+        placed = max(project.track(win.ids["t2"]).clips, key=lambda c: c.start)
+        assert placed.start == pytest.approx(expected, abs=1 / PX)
+        audio = project.tracks[-1]
+        assert audio.kind == "audio" and audio.clips[0].start == placed.start
 
 
 def test_plain_drop_still_imports_the_waveform(window, qtbot, bursts):

@@ -442,8 +442,14 @@ class MainWindow(QMainWindow):
         self.messages.show_message(f"opened {Path(path).name}")
         return True
 
+    def dialog_folder(self) -> str:
+        """Where file dialogs open: the project's folder, once it has one."""
+        return str(self.doc.path.parent) if self.doc.path else ""
+
     def open_dialog(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(self, "Open project", "", "Haptic timeline (*.htl)")
+        path, _ = QFileDialog.getOpenFileName(
+            self, "Open project", self.dialog_folder(), "Haptic timeline (*.htl)"
+        )
         if path:
             self.open_path(Path(path))
 
@@ -481,12 +487,12 @@ class MainWindow(QMainWindow):
 
     def import_dialog(self) -> None:
         paths, _ = QFileDialog.getOpenFileNames(
-            self, "Import", "", f"Importable ({self._extensions('reads')})"
+            self, "Import", self.dialog_folder(), f"Importable ({self._extensions('reads')})"
         )
         if paths:
-            self.import_files([Path(p) for p in paths], self._import_track(), self.arrange.here())
+            self.import_files([Path(p) for p in paths], self.import_track(), self.arrange.here())
 
-    def _import_track(self) -> str:
+    def import_track(self) -> str:
         """Where an import goes: the selected clip's track, else the lane under the pointer,
         else the first track."""
         project = self.doc.project
@@ -534,7 +540,7 @@ class MainWindow(QMainWindow):
 
     def export_dialog(self) -> None:
         path, _ = QFileDialog.getSaveFileName(
-            self, "Export", "", f"Exportable ({self._extensions('writes')})"
+            self, "Export", self.dialog_folder(), f"Exportable ({self._extensions('writes')})"
         )
         if path:
             self.export_to(Path(path))

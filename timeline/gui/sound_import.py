@@ -2,9 +2,11 @@
 
 The panel (a dock beside the timeline) holds every analysis setting, starting at Meta Haptics
 Studio's defaults. Importing analyses the sound off the GUI thread; when done, the design goes
-on a drive track (the lane it was dropped on, if a drive lane) as envelope breakpoints and
-emphasis, and the sound itself on a new audio track at the same time: one undo step. Dropping
-sound files with Alt held does the same at the drop point.
+on a drive track (the selected clip's or the lane under the pointer, if a drive lane, else the
+first) as envelope breakpoints and emphasis, and the sound itself on a new audio track at the same
+time: one undo step. Like any import, the new clips move later together to the first gap where
+they cover no clip already there. Dropping sound files with Alt held does the same at the drop
+point.
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ from timeline.analysis import DEFAULTS, AnalysisSettings, SettingsError
 from timeline.convert import ConvertedSound, analyse_sound_file, place_converted
 from timeline.errors import HapticTimelineError
 from timeline.gui.file_jobs import FileJob
+from timeline.placement import into_gap
 
 SOUND_EXTENSIONS = "*.wav *.flac *.ogg *.aif *.aiff *.mp3 *.opus"
 DROP_MODIFIER = Qt.KeyboardModifier.AltModifier
@@ -198,11 +201,12 @@ class SoundImport(QObject):
     def import_dialog(self) -> None:
         self.dock.show()
         paths, _ = QFileDialog.getOpenFileNames(
-            self.window, "Import sound as haptic", "", f"Sounds ({SOUND_EXTENSIONS})"
-        )
+            self.window, "Import sound as haptic", self.window.dialog_folder(),
+            f"Sounds ({SOUND_EXTENSIONS})",
+        )  # fmt: skip
         if paths:
-            at = self.window.view.scene().cursor_u
-            self.convert_files([Path(p) for p in paths], "", at)
+            track = self.window.import_track()
+            self.convert_files([Path(p) for p in paths], track, self.window.arrange.here())
 
     def convert_files(self, paths: list[Path], track_id: str, at: float) -> None:
         """Analyse sounds in the background; each lands at `at` on the drive track chosen."""
@@ -228,11 +232,15 @@ class SoundImport(QObject):
         drive = next((t.id for t in doc.project.tracks if t.id == track_id and t.kind == "drive"),
                      None)  # fmt: skip
         try:
+            before = {c.id for t in doc.project.tracks for c in t.clips}
             project = place_converted(doc.project, found, at=at, drive_track=drive)
+            new = [c.id for t in project.tracks for c in t.clips if c.id not in before]
+            project = into_gap(project, new, at)
         except HapticTimelineError as exc:
             self.window.messages.show_message(str(exc), "error")
             return
         doc.replace(f"import {found.path.name} as haptic", project)
+        doc.select_clips(new)
         a = found.analysis
         self.window.messages.show_message(
             f"{found.path.name} as haptic: {len(a.amplitude)} amplitude and {len(a.frequency)} "
