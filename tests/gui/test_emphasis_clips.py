@@ -167,6 +167,12 @@ def test_the_frequency_envelope_is_edited_in_its_own_lane_with_its_hz(designer, 
     ]
     assert frequency[0] == DESIGN.frequency[0] and frequency[-1] == DESIGN.frequency[-1]
     assert frequency[1] == pytest.approx((0.6, 0.6), abs=0.02)
+    # the exact value typed into the point's box, with the carrier it means
+    editor.v_box.selectAll()
+    QTest.keyClicks(editor.v_box, "0.25")
+    QTest.keyClick(editor.v_box, Qt.Key.Key_Return)
+    assert editor.tile.design.frequency[1] == (t, 0.25)
+    assert editor.hz_label.text() == "= 117.5 Hz"
     # a double-click adds a point to the frequency envelope; Delete takes it away again
     QTest.mouseDClick(
         canvas,
@@ -180,6 +186,7 @@ def test_the_frequency_envelope_is_edited_in_its_own_lane_with_its_hz(designer, 
     assert len(editor.tile.design.frequency) == 3
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the delete
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the add
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the typed value
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the whole drag
     assert editor.tile.design.frequency == DESIGN.frequency
 
