@@ -156,7 +156,7 @@ def test_an_import_lands_on_the_selected_clips_track_where_it_covers_nothing(
         win.view.viewport(), Qt.MouseButton.LeftButton, pos=clip_point(win, win.ids["c1"], 0.25)
     )
     assert win.view.scene().cursor_u == pytest.approx(0.75, abs=1 / PX)  # inside the sine
-    win.import_files([tmp_path / "piece.wav"], win._import_track(), win.arrange.here())
+    win.import_files([tmp_path / "piece.wav"], win.import_track(), win.arrange.here())
     qtbot.waitUntil(lambda: not win.jobs, timeout=10_000)
     assert win.messages.text.startswith("imported piece.wav"), win.messages.history
     clips = win.doc.project.track(win.ids["t1"]).clips
