@@ -367,7 +367,7 @@ def read_design(path: Path) -> tuple[VibrationDesign, str, list[str]]:
     convention = _convention(doc, events, controls)
     transients = [e for e in events if e["type"] == "HapticTransient"]
     if convention == "sqrt":  # undo the converter's ducking at emphasis points
-        at = {e["time"] for e in transients}
+        at = np.unique([e["time"] for e in transients])
         controls = [
             (pid, start, _unducked(pts, at) if pid == "HapticIntensityControl" else pts)
             for pid, start, pts in controls
@@ -433,13 +433,13 @@ def _curves(pid: str, points: list[tuple[float, float]]) -> list[dict[str, Any]]
             return curves
 
 
-def _unducked(points: list[tuple[float, float]], times: set[float]) -> list[tuple[float, float]]:
-    """Control points with the first at each emphasis time raised back by 1 / DUCKING.
+def _unducked(points: list[tuple[float, float]], marks: np.ndarray) -> list[tuple[float, float]]:
+    """Control points with the first at each emphasis time (`marks`, sorted once by the caller
+    for all curves) raised back by 1 / DUCKING.
 
     A point's absolute time is its curve's start plus its relative time, which can miss the
     transient's time by an ulp; within SAME_TIME counts as the same moment.
     """
-    marks = np.array(sorted(times))
     out, done = [], set()
     for t, v in points:
         k = int(np.searchsorted(marks, t))

@@ -12,6 +12,7 @@ both survive), raised to the envelope's level where it was weaker, as Meta's val
 
 from __future__ import annotations
 
+from collections import deque
 from pathlib import Path
 from typing import Any
 
@@ -116,9 +117,7 @@ def design_document(design: VibrationDesign) -> dict[str, Any]:
         # Meta refuses an envelope of fewer than two breakpoints or no length: a silent one
         # spanning the design stands in, keeping the emphasis and frequency envelope.
         amplitude = [{"time": 0.0, "amplitude": 0.0}, {"time": design.duration, "amplitude": 0.0}]
-    for e in design.emphasis:
-        _attach(amplitude, e)
-    envelopes: dict[str, Any] = {"amplitude": amplitude}
+    envelopes: dict[str, Any] = {"amplitude": _with_emphasis(amplitude, design.emphasis)}
     if design.frequency:
         envelopes["frequency"] = [{"time": t, "frequency": v} for t, v in design.frequency]
     return {
@@ -135,24 +134,50 @@ def design_document(design: VibrationDesign) -> dict[str, Any]:
     }
 
 
-def _attach(amplitude: list[dict[str, Any]], e: Emphasis) -> None:
-    """Put an emphasis on a free amplitude breakpoint at its time, inserting one if needed."""
-    times = [b["time"] for b in amplitude]
-    lo = int(np.searchsorted(times, e.time, side="left"))
-    hi = int(np.searchsorted(times, e.time, side="right"))
-    free = [k for k in range(lo, hi) if "emphasis" not in amplitude[k]]
-    if free:
-        bp = amplitude[free[0]]
-    else:
-        if e.time > times[-1]:
-            level = 0.0
-        elif hi > lo:
-            level = amplitude[hi - 1]["amplitude"]
+def _with_emphasis(
+    amplitude: list[dict[str, Any]], emphasis: tuple[Emphasis, ...]
+) -> list[dict[str, Any]]:
+    """The amplitude breakpoints with each emphasis (in time order) on a free one at its time.
+
+    One walk through both, O(breakpoints + emphasis): an emphasis takes the first breakpoint at
+    its time that carries none; when none is free, a breakpoint is added after those at its
+    time, at their level, at the envelope's level between its neighbours (the one before may be
+    an added one), or silent past the envelope's end. Its level is raised to the breakpoint's,
+    as Meta's validator requires.
+    """
+    out: list[dict[str, Any]] = []
+    free: deque[dict[str, Any]] = deque()
+    i, n = 0, len(amplitude)
+    current = None
+    for e in emphasis:
+        if e.time != current:
+            current = e.time
+            free.clear()
+            while i < n and amplitude[i]["time"] <= e.time:
+                out.append(amplitude[i])
+                if amplitude[i]["time"] == e.time:
+                    free.append(amplitude[i])
+                i += 1
+        if free:
+            bp = free.popleft()
         else:
-            level = float(np.interp(e.time, times, [b["amplitude"] for b in amplitude]))
-        bp = {"time": e.time, "amplitude": level}
-        amplitude.insert(hi, bp)
-    bp["emphasis"] = {"amplitude": max(e.amplitude, bp["amplitude"]), "frequency": e.frequency}
+            bp = {"time": e.time, "amplitude": _level_for(e.time, out, amplitude[i : i + 1])}
+            out.append(bp)
+        bp["emphasis"] = {"amplitude": max(e.amplitude, bp["amplitude"]), "frequency": e.frequency}
+    return out + amplitude[i:]
+
+
+def _level_for(time: float, before: list[dict[str, Any]], after: list[dict[str, Any]]) -> float:
+    """The level of a breakpoint added at `time`: that of the last at its time, the envelope
+    between the breakpoints around it, its first level before it, or 0 past its end."""
+    if before and before[-1]["time"] == time:
+        return before[-1]["amplitude"]
+    if not after:
+        return 0.0
+    if not before:
+        return after[0]["amplitude"]
+    a, b = before[-1], after[0]
+    return float(np.interp(time, [a["time"], b["time"]], [a["amplitude"], b["amplitude"]]))
 
 
 class LofeltFormat:

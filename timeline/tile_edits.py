@@ -18,27 +18,39 @@ from timeline.vibration_tile import VibrationTile
 EDITABLE_POINTS = 12
 
 
-def points_of(tile: Tile | None) -> tuple[tuple[float, float], ...] | None:
-    """The points a designer drags in the waveform editor: a spline's control points, or a
-    vibration design's amplitude breakpoints (0..1); None for tiles without points."""
+AMPLITUDE = "amplitude"
+FREQUENCY = "frequency"
+LANES = (AMPLITUDE, FREQUENCY)  # a vibration design's envelopes, by the name the editor shows
+
+
+def points_of(tile: Tile | None, lane: str = AMPLITUDE) -> tuple[tuple[float, float], ...] | None:
+    """The points a designer drags in the waveform editor: a spline's control points, or one of a
+    vibration design's envelopes (`lane`: amplitude or frequency breakpoints, 0..1); None for
+    tiles without points."""
     if isinstance(tile, SplineTile):
         return tile.points
     if isinstance(tile, VibrationTile):
-        return tile.design.amplitude
+        return getattr(tile.design, _lane(lane))
     return None
 
 
-def _points(project: Project, tile_id: str) -> tuple[Tile, list[tuple[float, float]]]:
+def _lane(lane: str) -> str:
+    if lane not in LANES:
+        raise EditError(f"a design has no {lane!r} envelope (it has {' and '.join(LANES)})")
+    return lane
+
+
+def _points(project: Project, tile_id: str, lane: str) -> tuple[Tile, list[tuple[float, float]]]:
     tile = project.tile(tile_id)
-    points = points_of(tile)
+    points = points_of(tile, lane)
     if points is None:
         raise EditError(f"{tile.name} is not a spline; make an editable copy to change its points")
     return tile, list(points)
 
 
-def _with_points(tile: Tile, points: list[tuple[float, float]]) -> Tile:
+def _with_points(tile: Tile, points: list[tuple[float, float]], lane: str) -> Tile:
     if isinstance(tile, VibrationTile):
-        return replace(tile, design=replace(tile.design, amplitude=tuple(points)))
+        return replace(tile, design=replace(tile.design, **{_lane(lane): tuple(points)}))
     return replace(tile, points=tuple(points))
 
 
@@ -48,16 +60,18 @@ def _span(tile: Tile) -> float:
 
 
 def _value(tile: Tile, v: float) -> float:
-    """A dragged value as the tile takes it: an amplitude stays within 0..1."""
+    """A dragged value as the tile takes it: a design's envelopes stay within 0..1."""
     return min(max(v, 0.0), 1.0) if isinstance(tile, VibrationTile) else v
 
 
-def move_point(project: Project, tile_id: str, index: int, t: float, v: float) -> Project:
+def move_point(
+    project: Project, tile_id: str, index: int, t: float, v: float, lane: str = AMPLITUDE
+) -> Project:
     """Move one point to (t, v), kept between its neighbours and inside the tile.
 
-    A spline's points stay 1 us apart; a design's amplitude breakpoints may share a time (a
+    A spline's points stay 1 us apart; a design's breakpoints (of `lane`) may share a time (a
     step) and keep their values within 0..1."""
-    tile, points = _points(project, tile_id)
+    tile, points = _points(project, tile_id, lane)
     if not 0 <= index < len(points):
         raise EditError(f"the tile has no point {index + 1}")
     gap = 0.0 if isinstance(tile, VibrationTile) else 1e-6
@@ -66,30 +80,34 @@ def move_point(project: Project, tile_id: str, index: int, t: float, v: float) -
     if not (math.isfinite(t) and math.isfinite(v)):
         raise EditError("a point needs finite numbers")
     points[index] = (min(max(t, lo), hi), _value(tile, v))
-    return replace_tile(project, tile_id, _with_points(tile, points))
+    return replace_tile(project, tile_id, _with_points(tile, points, lane))
 
 
-def add_point(project: Project, tile_id: str, t: float, v: float) -> tuple[Project, int]:
-    """Add a point; returns its index."""
-    tile, points = _points(project, tile_id)
+def add_point(
+    project: Project, tile_id: str, t: float, v: float, lane: str = AMPLITUDE
+) -> tuple[Project, int]:
+    """Add a point (to a design's `lane` envelope); returns its index."""
+    tile, points = _points(project, tile_id, lane)
     if not 0.0 <= t <= _span(tile):
         raise EditError(f"a point must lie inside the tile (0 to {_span(tile):.4g})")
+    if not (math.isfinite(t) and math.isfinite(v)):
+        raise EditError("a point needs finite numbers")
     if any(abs(p[0] - t) < 1e-6 for p in points):
         raise EditError("there is already a point at that time")
     index = sum(1 for p in points if p[0] < t)
     points.insert(index, (t, _value(tile, v)))
-    return replace_tile(project, tile_id, _with_points(tile, points)), index
+    return replace_tile(project, tile_id, _with_points(tile, points, lane)), index
 
 
-def remove_point(project: Project, tile_id: str, index: int) -> Project:
+def remove_point(project: Project, tile_id: str, index: int, lane: str = AMPLITUDE) -> Project:
     """Delete a point (a tile keeps at least one)."""
-    tile, points = _points(project, tile_id)
+    tile, points = _points(project, tile_id, lane)
     if len(points) <= 1:
         raise EditError("a tile's shape needs at least one point")
     if not 0 <= index < len(points):
         raise EditError(f"the tile has no point {index + 1}")
     del points[index]
-    return replace_tile(project, tile_id, _with_points(tile, points))
+    return replace_tile(project, tile_id, _with_points(tile, points, lane))
 
 
 def editable_copy(project: Project, tile_id: str, tab: str = "Scratch") -> tuple[Project, str]:

@@ -19,7 +19,6 @@ from timeline.devices import (
     Device,
     DeviceError,
     DeviceInfo,
-    Dynamics,
     Hand,
     Monitor,
     PositionProgram,
@@ -105,7 +104,7 @@ class UsbKnob(Device):
                 _shown(w.max_torque),
                 _shown(w.encoder_resolution),
                 ".".join(str(x) for x in w.firmware),
-                Dynamics(w.inertia, w.viscous, w.delay) if w.inertia > 0 else None,
+                w.dynamics(),
             )
         return self._info
 

@@ -295,3 +295,26 @@ def test_gain_trim_and_fades_read_back_as_the_edited_envelope(design, gain, at, 
     assert np.max(np.abs(read.amplitude_at(t) - expected)[away]) <= EDIT_TOLERANCE + 1e-9
     # the emphasis clips are clips of their own: the envelopes' edits leave them as they were
     assert read.emphasis == design.shifted(at).emphasis
+
+
+def _crossings(x: np.ndarray) -> int:
+    return int(np.count_nonzero(np.diff(np.signbit(x[x != 0.0]))))
+
+
+def test_frequency_breakpoints_are_edited_as_points_and_the_rendered_carrier_follows():
+    p = _project()
+    tile = p.tracks[0].clips[0].tile_id
+    window = slice(int(0.3 * RATE), int(0.45 * RATE))  # amplitude 0.4 there, no emphasis
+    assert _crossings(_drive(p)[window]) == pytest.approx(2 * 140.0 * 0.15, abs=2)  # 0.34..0.46
+    p, k = tile_edits.add_point(p, tile, 0.5, 0.0, tile_edits.FREQUENCY)
+    p = tile_edits.move_point(p, tile, k, 0.5, 1.7, tile_edits.FREQUENCY)  # clamped to 1
+    assert design_of(p).frequency == ((0.0, 0.1), (0.5, 1.0), (1.0, 0.9))
+    assert design_of(p).amplitude == DESIGN.amplitude  # the other envelope is untouched
+    hz = float(np.mean(carrier_hz(0.1 + 0.9 * np.linspace(0.3, 0.45, 1001) / 0.5)))
+    assert _crossings(_drive(p)[window]) == pytest.approx(2 * hz * 0.15, abs=2)  # 176..216 Hz
+    p = tile_edits.remove_point(p, tile, 0, tile_edits.FREQUENCY)
+    assert design_of(p).frequency == ((0.5, 1.0), (1.0, 0.9))
+    with pytest.raises(EditError, match="no 'loudness' envelope"):
+        tile_edits.move_point(p, tile, 0, 0.5, 0.5, "loudness")
+    with pytest.raises(EditError, match="finite"):
+        tile_edits.add_point(p, tile, 0.7, float("nan"), tile_edits.FREQUENCY)

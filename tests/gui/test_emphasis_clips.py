@@ -13,12 +13,12 @@ from PySide6.QtTest import QTest
 from timeline import edits
 from timeline.vibration import Emphasis, VibrationDesign, place_design
 
-from .helpers import click, clip_point, drag
+from .helpers import choose, click, clip_point, drag
 
 PX = 200.0  # pixels per second
 DESIGN = VibrationDesign(
     amplitude=((0.0, 0.0), (0.05, 0.5), (0.9, 0.3), (1.2, 0.0)),
-    frequency=((0.0, 0.4), (1.2, 0.6)),
+    frequency=((0.0, 0.4), (0.6, 0.3), (1.2, 0.6)),
     emphasis=(Emphasis(0.3, 0.9, 0.8), Emphasis(0.7, 0.6, 0.1)),
     duration=1.2,
 )
@@ -116,7 +116,10 @@ def test_dragging_an_amplitude_breakpoint_in_the_waveform_editor_edits_the_desig
     assert moved[0] == pytest.approx(0.9, abs=2 * DESIGN.duration / canvas.width())
     assert moved[1] == pytest.approx(0.6, abs=0.02)
     assert [amplitude[k] for k in (0, 1, 3)] == [DESIGN.amplitude[k] for k in (0, 1, 3)]
-    # dragged above full scale, an amplitude stops at 1; one undo step puts it back
+    # dragged above full scale, an amplitude stops at 1; one undo step puts it back. Pressed
+    # where the point is drawn now (the export's message may have resized the editor)
+    t, v = win.editor.tile.design.amplitude[2]
+    target = QPoint(round(canvas.x_of(t)), round(canvas.y_of(v)))
     QTest.mousePress(canvas, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, target)
     QTest.mouseMove(canvas, QPoint(target.x(), 0))
     QTest.mouseRelease(
@@ -125,3 +128,57 @@ def test_dragging_an_amplitude_breakpoint_in_the_waveform_editor_edits_the_desig
     assert win.editor.tile.design.amplitude[2][1] == 1.0
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
     assert win.editor.tile.design.amplitude[2][1] == pytest.approx(0.6, abs=0.02)
+
+
+def _drag_on(canvas, press: QPoint, target: QPoint) -> None:
+    """Press, move in two steps and release on the waveform editor's curve."""
+    QTest.mousePress(canvas, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, press)
+    QTest.mouseMove(canvas, (press + target) / 2)
+    QTest.mouseMove(canvas, target)
+    QTest.mouseRelease(canvas, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, target)
+
+
+def test_the_frequency_envelope_is_edited_in_its_own_lane_with_its_hz(designer, qtbot, tmp_path):
+    win = designer
+    envelopes = win.doc.project.tracks[0].clips[0]
+    click(win, clip_point(win, envelopes.id))
+    editor, canvas = win.editor, win.editor.canvas
+    assert editor.lane_box.isVisible() and editor.lane == "amplitude"
+    choose(qtbot, editor.lane_box, "Frequency")
+    win.activateWindow()  # the list that popped up had it; the window's shortcuts need it back
+    qtbot.waitUntil(win.isActiveWindow, timeout=5_000)
+    assert editor.points() == DESIGN.frequency
+    # the breakpoint at 0.6 s (0.3 = 125 Hz) dragged up to 0.6 (170 Hz): one undo step
+    press = QPoint(int(canvas.x_of(0.6)), int(canvas.y_of(0.3)))
+    target = QPoint(press.x(), int(canvas.y_of(0.6)))
+    _drag_on(canvas, press, target)
+    if os.environ.get("HT_SCREENSHOTS"):
+        win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "frequency_point.png"))
+    t, f = editor.tile.design.frequency[1]
+    assert f == pytest.approx(0.6, abs=0.02) and t == pytest.approx(0.6, abs=0.01)
+    assert editor.v_box.value() == pytest.approx(f, abs=1e-4)
+    assert editor.hz_label.text() == f"= {80.0 + 150.0 * f:.1f} Hz"
+    assert editor.tile.design.amplitude == DESIGN.amplitude
+    win.export_to(tmp_path / "sharper.haptic")
+    qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
+    doc = json.loads((tmp_path / "sharper.haptic").read_text())
+    frequency = [
+        (b["time"], b["frequency"]) for b in doc["signals"]["continuous"]["envelopes"]["frequency"]
+    ]
+    assert frequency[0] == DESIGN.frequency[0] and frequency[-1] == DESIGN.frequency[-1]
+    assert frequency[1] == pytest.approx((0.6, 0.6), abs=0.02)
+    # a double-click adds a point to the frequency envelope; Delete takes it away again
+    QTest.mouseDClick(
+        canvas,
+        Qt.MouseButton.LeftButton,
+        Qt.KeyboardModifier.NoModifier,
+        QPoint(int(canvas.x_of(1.0)), int(canvas.y_of(0.9))),
+    )
+    assert len(editor.tile.design.frequency) == 4 and editor.point == 2
+    assert editor.tile.design.frequency[2][1] == pytest.approx(0.9, abs=0.02)
+    QTest.keyClick(canvas, Qt.Key.Key_Delete)
+    assert len(editor.tile.design.frequency) == 3
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the delete
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the add
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the whole drag
+    assert editor.tile.design.frequency == DESIGN.frequency

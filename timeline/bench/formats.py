@@ -18,6 +18,7 @@ from timeline.bench.report import Table, best_time
 from timeline.formats import FormatError, all_formats
 from timeline.model import Project
 from timeline.tiles import SampledTile
+from timeline.vibration import Emphasis, VibrationDesign, place_design
 
 NAME = "formats"
 SUMMARY = ".haptic and AHAP import/export time of long designs, as ratios to a JSON parse"
@@ -25,6 +26,7 @@ HAPTIC_SECONDS = 120.0
 HAPTIC_BREAKPOINTS = 6_881  # amplitude and frequency together, as in a 120 s Studio export
 RECORDING_RATE = 10_000.0  # Hz: a drive recording at the knob's servo rate
 AHAP_EVENTS = 440_000  # issue 11's target: imported in <= 5 s, or refused by a documented limit
+EMPHASIS = 10_000  # a minute of dense accents: emphasis between the envelope's breakpoints
 
 
 def long_haptic(seconds: float = HAPTIC_SECONDS, breakpoints: int = HAPTIC_BREAKPOINTS) -> dict:
@@ -64,6 +66,25 @@ def drive_recording(seconds: float = HAPTIC_SECONDS, rate: float = RECORDING_RAT
     project, track = edits.add_track(edits.new_project(templates=False), "drive")
     project, tile = edits.add_tile(project, SampledTile(samples, rate, "recording"))
     return edits.add_clip(project, track, tile, 0.0)[0]
+
+
+def accented_design(emphasis: int = EMPHASIS, seconds: float = 60.0) -> VibrationDesign:
+    """A seeded design: a 700-breakpoint envelope and `emphasis` accents at off-grid times."""
+    rng = np.random.default_rng(5)
+    times = np.sort(rng.uniform(0.0, seconds, 700))
+    times[0], times[-1] = 0.0, seconds
+    levels = np.round(rng.uniform(0.0, 1.0, 700), 4)
+    amplitude = tuple(zip(times.tolist(), levels.tolist(), strict=True))
+    accents = tuple(
+        Emphasis(t, a, f)
+        for t, a, f in zip(
+            rng.uniform(0.0, seconds, emphasis).tolist(),
+            np.round(rng.uniform(0.2, 1.0, emphasis), 4).tolist(),
+            np.round(rng.uniform(0.0, 1.0, emphasis), 4).tolist(),
+            strict=True,
+        )
+    )
+    return VibrationDesign(amplitude, (), accents, seconds)
 
 
 def many_events_ahap(events: int = AHAP_EVENTS) -> dict:
@@ -142,6 +163,31 @@ def run(quick: bool, out: Path) -> list[Table]:
                     repeat,
                 )
             )
+        emphasis = EMPHASIS // 10 if quick else EMPHASIS
+        accented = place_design(
+            edits.new_project(templates=False), accented_design(emphasis), name="accents"
+        )
+        for ext in (".haptic", ".ahap"):
+            target = folder / f"accents{ext}"
+            exporting.export_project(accented, target)
+            table.rows.append(
+                _row(
+                    f"design of {emphasis:,} emphasis export {ext}",
+                    target,
+                    lambda t=target: exporting.export_project(accented, t),
+                    repeat,
+                )
+            )
+        table.rows.append(
+            _row(
+                f"that AHAP ({emphasis:,} transients) import",
+                folder / "accents.ahap",
+                lambda: importing.import_file(
+                    edits.new_project(templates=False), folder / "accents.ahap"
+                ),
+                repeat,
+            )
+        )
         limit = all_formats()["ahap"].max_events
         sizes = [limit // 50] if quick else [limit, AHAP_EVENTS]
         for events in sizes:
@@ -160,7 +206,7 @@ def run(quick: bool, out: Path) -> list[Table]:
     )
     if quick:
         table.notes.append(
-            "--quick: a tenth of the breakpoints and of the recording, a fiftieth of the AHAP "
-            "limit, no refusal case"
+            "--quick: a tenth of the breakpoints, the recording and the emphasis, a fiftieth of "
+            "the AHAP limit, no refusal case"
         )
     return [table]

@@ -1,5 +1,6 @@
-"""The waveform editor: the selected tile's curve, spline points to drag, add and delete, exact
-values in numeric boxes, and a range that can be dragged (or sent) to the palette."""
+"""The waveform editor: the selected tile's curve, spline points (or a vibration design's
+amplitude or frequency breakpoints) to drag, add and delete, exact values in numeric boxes, and a
+range that can be dragged (or sent) to the palette."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import numpy as np
 from PySide6.QtCore import QEvent, QMimeData, QPointF, QRectF, Qt
 from PySide6.QtGui import QColor, QDrag, QFont, QMouseEvent, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import (
+    QComboBox,
     QDoubleSpinBox,
     QHBoxLayout,
     QLabel,
@@ -21,6 +23,7 @@ from PySide6.QtWidgets import (
 from timeline import tile_edits
 from timeline.model import Track
 from timeline.tiles import Tile
+from timeline.vibration_design import carrier_hz
 from timeline.vibration_tile import VibrationTile
 
 from .clip_shape import tile_samples
@@ -31,6 +34,7 @@ from .palette import RANGE_MIME
 from .tile_editing import edit_tile
 
 PICK_PX = 8.0
+ENVELOPE_COLORS = {tile_edits.AMPLITUDE: "#d1495b", tile_edits.FREQUENCY: "#2a9d8f"}
 MARGIN = 10.0
 DELETE_KEYS = (Qt.Key.Key_Delete, Qt.Key.Key_Backspace)
 
@@ -76,7 +80,7 @@ class Canvas(QWidget):
         return hi - (y - MARGIN) / (self.height() - 2 * MARGIN) * (hi - lo)
 
     def point_at(self, pos: QPointF) -> int | None:
-        for i, (t, v) in enumerate(tile_edits.points_of(self.editor.tile) or ()):
+        for i, (t, v) in enumerate(self.editor.points() or ()):
             if abs(self.x_of(t) - pos.x()) <= PICK_PX and abs(self.y_of(v) - pos.y()) <= PICK_PX:
                 return i
         return None
@@ -112,11 +116,9 @@ class Canvas(QWidget):
         painter.drawPolyline(
             QPolygonF([QPointF(x, self.y_of(v)) for x, v in zip(xs, values, strict=True)])
         )
-        points = tile_edits.points_of(tile) or ()
-        if isinstance(tile, VibrationTile) and points:  # the amplitude envelope the points make
-            painter.setPen(QPen(QColor("#d1495b"), 1.5))
-            line = [QPointF(self.x_of(t), self.y_of(v)) for t, v in points]
-            painter.drawPolyline(QPolygonF(line))
+        points = self.editor.points() or ()
+        if isinstance(tile, VibrationTile):
+            self._paint_envelopes(painter, tile)
         for i, (t, v) in enumerate(points):
             chosen = i == self.editor.point
             painter.setBrush(QColor("#d1495b" if chosen else "#ffffff"))
@@ -130,6 +132,32 @@ class Canvas(QWidget):
             QPointF(MARGIN + 2, 12),
             f"{tile.name} · {axis_text(tile.duration, self.editor.doc.project.axis)}",
         )
+
+    def _paint_envelopes(self, painter: QPainter, tile: VibrationTile) -> None:
+        """A design's envelopes over its carrier: the edited one bold, the other faint; in the
+        frequency lane, what 0 and 1 mean in Hz."""
+        for lane in tile_edits.LANES:
+            points = tile_edits.points_of(tile, lane) or ()
+            edited = lane == self.editor.lane
+            color = QColor(ENVELOPE_COLORS[lane])
+            if not edited:
+                color.setAlpha(90)
+            pen = QPen(color, 1.5 if edited else 1.0)
+            if not edited:
+                pen.setStyle(Qt.PenStyle.DashLine)
+            painter.setPen(pen)
+            painter.drawPolyline(
+                QPolygonF([QPointF(self.x_of(t), self.y_of(v)) for t, v in points])
+            )
+        if self.editor.lane == tile_edits.FREQUENCY:
+            font = QFont()
+            font.setPointSizeF(7.0)
+            painter.setFont(font)
+            painter.setPen(QColor(ENVELOPE_COLORS[tile_edits.FREQUENCY]))
+            for value in (0.0, 1.0):  # just below each line, clear of the name and the scale
+                painter.drawText(
+                    QPointF(MARGIN + 2, self.y_of(value) + 11), f"{value:g} = {hz_text(value)}"
+                )
 
     def _paint_scale(self, painter: QPainter, peak: float) -> None:
         """Grid lines at 0, ±½ and ±1 of the peak, labelled in tile units and, for the selected
@@ -183,11 +211,12 @@ class Canvas(QWidget):
             self.editor.set_range(self.editor.range[0], self.t_of(pos.x()))
         elif self.dragging is not None:
             index = self.editor.apply(
-                "move spline point",
+                self.editor.label("move"),
                 _move_keep_index,
                 self.dragging,
                 self.t_of(pos.x()),
                 self.v_of(pos.y()),
+                self.editor.lane,
                 merge_key=self.merge_key,
             )
             if index is not None:
@@ -205,10 +234,11 @@ class Canvas(QWidget):
             return
         pos = event.position()
         index = self.editor.apply(
-            "add spline point",
+            self.editor.label("add"),
             tile_edits.add_point,
             self.t_of(pos.x()),
             self.v_of(pos.y()),
+            self.editor.lane,
         )
         if index is not None:
             self.editor.select_point(index)
@@ -234,8 +264,13 @@ def nice_level(peak: float) -> float:
     return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= peak * (1 + 1e-12))
 
 
-def _move_keep_index(project, tile_id: str, index: int, t: float, v: float):
-    return tile_edits.move_point(project, tile_id, index, t, v), index
+def hz_text(frequency: float) -> str:
+    """A design's normalised frequency as the carrier it maps to."""
+    return f"{float(carrier_hz(frequency)):.1f} Hz"
+
+
+def _move_keep_index(project, tile_id: str, index: int, t: float, v: float, lane: str):
+    return tile_edits.move_point(project, tile_id, index, t, v, lane), index
 
 
 class WaveformEditor(QWidget):
@@ -247,7 +282,14 @@ class WaveformEditor(QWidget):
         self.tile_id: str | None = None
         self.point: int | None = None
         self.range = (0.0, 0.0)
+        self.lane = tile_edits.AMPLITUDE
         self.canvas = Canvas(self)
+        self.lane_box = QComboBox()
+        self.lane_box.addItems([lane.capitalize() for lane in tile_edits.LANES])
+        self.lane_box.setToolTip("Which envelope of the design the points edit")
+        self.lane_box.currentIndexChanged.connect(self.set_lane)
+        self.hz_label = QLabel()
+        self.hz_label.setMinimumWidth(self.hz_label.fontMetrics().horizontalAdvance("= 230.0 Hz"))
         self.t_box = self._box("t ")
         self.v_box = self._box("value ")
         self.delete_button = QPushButton("Delete point")
@@ -261,9 +303,11 @@ class WaveformEditor(QWidget):
         )
         self.to_palette.clicked.connect(lambda: self.range_to_palette("Scratch"))
         row = QHBoxLayout()
+        row.addWidget(self.lane_box)
         row.addWidget(QLabel("point"))
         row.addWidget(self.t_box)
         row.addWidget(self.v_box)
+        row.addWidget(self.hz_label)
         row.addWidget(self.delete_button)
         row.addStretch(1)
         row.addWidget(self.copy_button)
@@ -275,6 +319,22 @@ class WaveformEditor(QWidget):
         doc.changed.connect(self.refresh)
         doc.selection_changed.connect(self.refresh)
         self.refresh()
+
+    def points(self) -> tuple[tuple[float, float], ...] | None:
+        """The shown tile's draggable points (a design's: those of the chosen envelope)."""
+        return tile_edits.points_of(self.tile, self.lane)
+
+    def label(self, verb: str) -> str:
+        """An undo step's name for a point edit: "move frequency point", "add spline point"."""
+        kind = self.lane if isinstance(self.tile, VibrationTile) else "spline"
+        return f"{verb} {kind} point"
+
+    def set_lane(self, index: int) -> None:
+        """Edit a design's amplitude (0) or frequency (1) envelope."""
+        if tile_edits.LANES[index] != self.lane:
+            self.lane, self.point = tile_edits.LANES[index], None
+            self.lane_box.setCurrentIndex(index)
+            self.refresh()
 
     @property
     def tile(self) -> Tile | None:
@@ -304,7 +364,7 @@ class WaveformEditor(QWidget):
             self.tile_id = self.doc.selected_tile
             self.point, self.range = None, (0.0, 0.0)
         tile = self.tile
-        points = tile_edits.points_of(tile)
+        points = self.points()
         if points is not None and self.point is not None and self.point >= len(points):
             self.point = None
         editable = points is not None
@@ -315,8 +375,15 @@ class WaveformEditor(QWidget):
         axis = self.doc.project.axis
         self.t_box.setPrefix("t " if axis == "time" else "θ ")
         self.t_box.setSuffix(" s" if axis == "time" else "°")
+        design = isinstance(tile, VibrationTile)
+        self.lane_box.setVisible(design)
+        frequency = design and self.lane == tile_edits.FREQUENCY
+        self.hz_label.setVisible(frequency)
+        self.hz_label.setText("")
+        self.v_box.setPrefix("f " if frequency else "value ")
         if editable and self.point is not None:
             t, v = points[self.point]
+            self.hz_label.setText(f"= {hz_text(v)}")
             for box, value in ((self.t_box, t * display_factor(axis)), (self.v_box, v)):
                 box.blockSignals(True)
                 box.setValue(value)
@@ -335,11 +402,12 @@ class WaveformEditor(QWidget):
         if self.point is None or self.tile_id is None:
             return
         self.apply(
-            "set spline point",
+            self.label("set"),
             tile_edits.move_point,
             self.point,
             self.t_box.value() / display_factor(self.doc.project.axis),
             self.v_box.value(),
+            self.lane,
         )
 
     def apply(self, label: str, edit, *args, merge_key: object = None):
@@ -351,7 +419,7 @@ class WaveformEditor(QWidget):
         if (
             self.point is not None
             and self.tile_id is not None
-            and self.apply("delete spline point", tile_edits.remove_point, self.point)
+            and self.apply(self.label("delete"), tile_edits.remove_point, self.point, self.lane)
         ):
             self.select_point(None)
 
