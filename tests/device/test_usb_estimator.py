@@ -212,3 +212,10 @@ def test_any_sealed_estimator_decodes_to_a_model_or_a_protocol_error(
     assert dyn.estimator in ("", "filter", "kalman", "tracking")
     if dyn.estimator_declared:
         assert not np.isnan(servo.damping_limit(dyn, 1e-4))
+
+
+def test_rendered_on_a_device_without_a_declared_estimator_says_what_it_assumed() -> None:
+    old = _usb(declare=False).info
+    trace = rendered_knob(layered("mass", 5e-6, seconds=0.02), old, Hand("turn", 90.0))
+    assert trace.label.endswith("(estimator not declared: the sim's Kalman observer assumed)")
+    assert trace.time.size == 200
