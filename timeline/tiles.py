@@ -74,7 +74,7 @@ class SampledTile:
     def __post_init__(self) -> None:
         data = self.data
         if not samples.frozen(data):  # anything another owner could change is copied
-            data = np.array(data, dtype=np.float64, copy=True).reshape(-1)
+            data = np.array(np.reshape(data, -1), dtype=np.float64)  # its own memory: frozen
         if data.size == 0:
             raise EditError("a sampled tile needs at least one sample")
         if data.size > MAX_TILE_SAMPLES:

@@ -9,10 +9,9 @@ from functools import cached_property
 import numpy as np
 
 from device.sim.observer import NOISE, kalman_gains, tracking_gains
-from timeline.devices import DeviceError, Dynamics
+from timeline.devices import ESTIMATORS, DeviceError, Dynamics
 
 ENCODER_QUANTUM = math.radians(0.001)  # rad per count: 0.001 deg
-ESTIMATORS = ("kalman", "filter", "tracking")  # how the firmware estimates velocity and accel.
 
 
 @dataclass(frozen=True)
@@ -34,6 +33,8 @@ class KnobParams:
     estimator: str = "kalman"  # "kalman", "filter" (differences, low-passed) or "tracking"
     observer_noise: float = NOISE  # the Kalman observer's noise, fraction of a 3-point estimate's
     observer_bandwidth: float = 1000.0  # Hz: where the tracking observer's three poles sit
+    gains: tuple[float, ...] = ()  # an observer's L as a firmware holds it; () = from the above
+    # (a device option takes "l0,l1,l2")
     slew: float = 0.0  # N*m/s the amplifier's output may change by at most; 0 = no limit
     delay: int = 0  # servo periods between reading the encoder and applying its torque (0 or 1)
     watchdog_timeout: float = 0.005  # s without a block before the torque starts ramping down
@@ -43,7 +44,7 @@ class KnobParams:
     def __post_init__(self) -> None:
         for name in self.__dataclass_fields__:
             value = getattr(self, name)
-            if name in ("firmware", "estimator"):
+            if name in ("firmware", "estimator", "gains"):
                 continue
             if not math.isfinite(value) or value < 0:
                 raise DeviceError(f"the knob's {name.replace('_', ' ')} must be >= 0, not {value}")
@@ -56,6 +57,8 @@ class KnobParams:
                 "the knob's observer noise is a fraction between 0 and 1, "
                 f"not {self.observer_noise}"
             )
+        if self.gains:
+            object.__setattr__(self, "gains", _gains(self.gains, self.estimator))
         if self.delay not in (0, 1):
             raise DeviceError(f"the knob's delay is 0 or 1 servo period, not {self.delay}")
         if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
@@ -73,11 +76,17 @@ class KnobParams:
             self.velocity_cutoff,
             self.acceleration_cutoff,
             () if gains is None else tuple(float(g) for g in gains),
+            self.estimator,
         )
 
     @cached_property
     def observer_gains(self) -> np.ndarray | None:
-        """The observer's gain L (observer.py), or None when the filters estimate."""
+        """The observer's gain L (observer.py, or `gains` when given), or None when the filters
+        estimate."""
+        if self.estimator == "filter":
+            return None
+        if self.gains:
+            return np.array(self.gains, dtype=np.float64)
         if self.estimator == "kalman":
             return kalman_gains(self.period, self.observer_noise)
         if self.estimator == "tracking":
@@ -91,3 +100,18 @@ class KnobParams:
     def smoothing(self, cutoff: float) -> float:
         """Gain of a first-order low-pass at a cut-off (1.0 = no filtering)."""
         return 1.0 if cutoff <= 0 else 1.0 - math.exp(-2.0 * math.pi * cutoff / self.rate)
+
+
+def _gains(value: object, estimator: str) -> tuple[float, float, float]:
+    """An observer's L from three numbers or "l0,l1,l2" (a device option), or DeviceError."""
+    parts = value.split(",") if isinstance(value, str) else value
+    try:
+        gains = tuple(float(g) for g in parts)  # type: ignore[union-attr]
+    except (TypeError, ValueError):
+        gains = ()
+    if estimator == "filter" or len(gains) != 3 or not all(math.isfinite(g) for g in gains):
+        raise DeviceError(
+            f"the knob's observer gains are three finite numbers l0,l1,l2 for a kalman or "
+            f"tracking estimator, not {value!r} for {estimator}"
+        )
+    return gains

@@ -125,7 +125,9 @@ class KnobPhysics:
         tel = self._run(len(block), coeffs=coeffs)
         n = len(tel)
         layers = dict(zip("dkbm", coeffs[:, :n], strict=False))
-        flags = stability_flags(tel.time, layers["k"], layers["b"], layers.get("m"), self.params)
+        p = self.params
+        k, b, m = layers["k"], layers["b"], layers.get("m")
+        flags = stability_flags(tel.time, k, b, m, p.dynamics, p.period)
         if refused is not None:
             flags.append(refused)
             tel = replace(tel, warnings=(*tel.warnings, refused.message))
@@ -182,7 +184,9 @@ class KnobPhysics:
             layers["b"] = damping
         if mass is not None:
             layers["m"] = mass
-        flags = stability_flags(tel.time, local_stiffness(table, where), damping, mass, self.params)
+        stiffness = local_stiffness(table, where)
+        p = self.params
+        flags = stability_flags(tel.time, stiffness, damping, mass, p.dynamics, p.period)
         return _with(tel, layers, flags)
 
     def _run(

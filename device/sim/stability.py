@@ -14,8 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from device.sim.params import KnobParams
-from timeline.devices import StabilityFlag
+from timeline.devices import Dynamics, StabilityFlag
 from timeline.limits import servo
 
 
@@ -35,15 +34,19 @@ def stability_flags(
     stiffness: np.ndarray,
     damping: np.ndarray,
     mass: np.ndarray | None,
-    params: KnobParams,
+    dyn: Dynamics,
+    period: float,
 ) -> list[StabilityFlag]:
     """Flag samples beyond the stiffness, damping or mass limits of the knob's servo loop.
+
+    `dyn` and `period` are the knob's (KnobParams.dynamics and .period, or what a USB device
+    declares). Without a declared estimator only passivity and negative damping are flagged:
+    the damping and mass limits depend on it.
 
     Each rule flags samples strictly beyond its limit; a flag's margins say by how much. A rule
     is first tested on the layers' extremes (a few reductions per block, where per-sample
     masks cost more than the servo loop) and per sample only when an extreme is beyond it.
     """
-    dyn, period = params.dynamics, params.period
     flags: list[StabilityFlag] = []
     if not time.size:
         return flags
@@ -66,7 +69,8 @@ def stability_flags(
     if damping.min() < 0:
         flag("negative-damping", "negative virtual damping (active)", damping < 0, -damping,
              "N*m*s/rad")  # fmt: skip
-    b_max = servo.damping_limit(dyn, period)
+    declared = dyn.estimator_declared  # the damping and mass limits depend on the estimator
+    b_max = servo.damping_limit(dyn, period) if declared else np.inf
     if damping.max() > b_max:
         flag(
             "damping-limit",
@@ -78,15 +82,15 @@ def stability_flags(
         )
     if mass is None:
         return flags
-    low, high = servo.mass_limits(dyn, period)
+    low, high = servo.mass_limits(dyn, period) if declared else (-dyn.inertia, np.inf)
     m_low, m_high = mass.min(), mass.max()
-    if params.inertia + m_low <= 0 or m_high > high or m_low < low:
-        cancel = params.inertia + mass <= 0
+    if dyn.inertia + m_low <= 0 or m_high > high or m_low < low:
+        cancel = dyn.inertia + mass <= 0
         flag(
             "mass-cancels-inertia",
-            f"virtual mass cancels the rotor inertia (J + m <= 0, J = {params.inertia:g})",
+            f"virtual mass cancels the rotor inertia (J + m <= 0, J = {dyn.inertia:g})",
             cancel,
-            -(params.inertia + mass),
+            -(dyn.inertia + mass),
             "kg*m^2",
         )
         flag(

@@ -29,6 +29,8 @@ class EmulatedKnob:
     as real firmware does (it computes on one sample and applies on the next), and declares it
     in GET_INFO. A vibrotactile device renders the drive term only, at +-1.0 of full scale, with
     no delay (it plays its samples open loop), and reports zero angle and velocity.
+    A knob declares its estimator (protocol 2.1) and runs the float32 observer gains it
+    declares; `declare_estimator=False` makes a protocol 2.0 device (58-byte GET_INFO).
     """
 
     def __init__(
@@ -41,12 +43,17 @@ class EmulatedKnob:
         report_samples: int = 100,
         watchdog_ms: int = 50,
         limits: tuple[float, float, float] = (100.0, 1.0, 1e-2),
+        declare_estimator: bool = True,
     ) -> None:
         # A knob's firmware applies the torque it computed from one reading a period later; a
         # vibrotactile driver plays its samples open loop, with nothing to compute.
         params = params or KnobParams(
             max_torque=1.0 if vibrotactile else 0.18, delay=int(not vibrotactile)
         )
+        estimator = _declared_estimator(params) if declare_estimator and not vibrotactile else {}
+        if estimator and params.observer_gains is not None:
+            # The firmware runs the float32 gains it declares, as a Cortex-M4F would hold them.
+            params = replace(params, gains=estimator["observer_gains"])
         self.info = p.InfoPayload(
             kind=p.KIND_VIBROTACTILE if vibrotactile else p.KIND_KINESTHETIC,
             rate_hz=round(params.rate),
@@ -66,6 +73,8 @@ class EmulatedKnob:
             coulomb=0.0 if vibrotactile else params.coulomb,
             delay=params.delay,
             firmware=FIRMWARE_VERSION,
+            protocol_minor=p.PROTOCOL_MINOR if declare_estimator else 0,
+            **estimator,
         )
         # The sim's own watchdog starts at once: this firmware calls run_idle only to ramp down.
         self._params = replace(params, watchdog_timeout=0.0)
@@ -99,8 +108,8 @@ class EmulatedKnob:
     # --- control requests -------------------------------------------------------------------
     def control_in(self, request: int, length: int) -> bytes:
         """Answer a vendor IN request, or raise ProtocolError (a STALL on endpoint 0)."""
-        if request == p.REQ_GET_INFO and length >= p.INFO_SIZE:
-            return p.encode_info(self.info)
+        if request == p.REQ_GET_INFO and length >= p.INFO_V20_SIZE:
+            return p.encode_info(self.info)[:length]  # a 2.0 host asks for 58 bytes: the 2.0 part
         raise p.ProtocolError(f"unsupported IN request {request:#x} of {length} bytes")
 
     def control_out(self, request: int, value: int, data: bytes) -> None:
@@ -271,3 +280,18 @@ class EmulatedKnob:
                 rows = np.column_stack([tel.angle, tel.velocity, tel.torque])
             self._unreported.append(rows)
         return n
+
+
+def _declared_estimator(params: KnobParams) -> dict:
+    """GET_INFO's estimator fields for a knob's params: cut-offs, and an observer's gains
+    rounded to the float32 the wire (and the firmware) holds."""
+    gains = params.observer_gains
+    codes = {name: code for code, name in p.ESTIMATORS.items()}
+    return {
+        "estimator": codes[params.estimator],
+        "velocity_cutoff": float(np.float32(params.velocity_cutoff)),
+        "acceleration_cutoff": float(
+            np.float32(params.acceleration_cutoff if gains is None else 0)
+        ),
+        "observer_gains": (0.0,) * 3 if gains is None else tuple(map(float, gains.astype("<f4"))),
+    }

@@ -12,9 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from timeline.devices import Dynamics
+from timeline.devices.dynamics import OBSERVERS
 from timeline.errors import HapticTimelineError
 
 PROTOCOL_VERSION = 2  # 2: blocks and reports end in a CRC-32 of their bytes
+PROTOCOL_MINOR = 1  # 2.1: GET_INFO declares the estimator, sealed by a CRC-32 (2.0: 58 bytes)
 
 # Default IDs: pid.codes' open-source VID with one of its *test* PIDs (1209:0001). A test ID is
 # for development only; a product built to this protocol registers its own PID with pid.codes.
@@ -80,15 +83,25 @@ _INFO_MAGIC = b"HI"
 _BLOCK_HEADER = struct.Struct("<2sBBIHH")  # magic, version, mask, seq, n, flags
 _REPORT_HEADER = struct.Struct("<2sBBIIHHIIII")  # magic, version, state, seq, first, n, flags,
 # fill, underruns, overruns, last block seq
-_INFO = struct.Struct("<2sBBBBHIfffffIHHBBHHfff")
+_INFO = struct.Struct("<2sBBBBHIfffffIHHBBHHfff")  # version 2.0's answer
+_ESTIMATOR = struct.Struct("<BBHfffff")  # 2.1: minor, estimator, reserved, cut-offs, L; + CRC
 _CRC = struct.Struct("<I")  # trailer of blocks and reports
 _LIMITS = struct.Struct("<fHH")  # max torque, watchdog ms, reserved
 BLOCK_HEADER_SIZE = _BLOCK_HEADER.size
 REPORT_HEADER_SIZE = _REPORT_HEADER.size
-INFO_SIZE = _INFO.size
+INFO_V20_SIZE = _INFO.size
+INFO_SIZE = _INFO.size + _ESTIMATOR.size + 4  # what a 2.1 host asks for and a 2.1 device answers
 LIMITS_SIZE = _LIMITS.size
 WATCHDOG_RANGE_MS = (5, 1000)
 MAX_DELAY = 1  # servo periods of computation delay GET_INFO may declare (the host models 0, 1)
+
+# How the firmware estimates velocity and acceleration (GET_INFO byte 59, version 2.1).
+ESTIMATOR_UNDECLARED = 0  # reserved: a 2.0 device, or one that does not say
+ESTIMATOR_FILTER = 1  # backward differences through first-order low-passes at the cut-offs
+ESTIMATOR_KALMAN = 2  # an observer with a steady-state Kalman gain L
+ESTIMATOR_TRACKING = 3  # an observer with a pole-placing (tracking) gain L
+ESTIMATORS = {ESTIMATOR_UNDECLARED: "", ESTIMATOR_FILTER: "filter", ESTIMATOR_KALMAN: "kalman",
+              ESTIMATOR_TRACKING: "tracking"}  # fmt: skip
 
 
 class ProtocolError(HapticTimelineError):
@@ -133,17 +146,32 @@ class InfoPayload:
     delay: int = 0  # servo periods between reading the encoder and applying the torque from it
     firmware: tuple[int, int, int] = (1, 0, 0)
     protocol_version: int = PROTOCOL_VERSION
+    estimator: int = ESTIMATOR_UNDECLARED  # version 2.1; a 2.0 answer leaves it undeclared
+    velocity_cutoff: float = 0.0  # Hz, low-pass on the velocity difference (0 = none)
+    acceleration_cutoff: float = 0.0  # Hz, low-pass on the acceleration difference (filter)
+    observer_gains: tuple[float, float, float] = (0.0, 0.0, 0.0)  # L of an observer
+    protocol_minor: int = PROTOCOL_MINOR  # 0: a 2.0 answer of 58 bytes
 
     def channel_limits(self, mask: int) -> np.ndarray:
         """Largest magnitude allowed for each channel in the mask, in wire order."""
         limits = (self.max_torque, self.max_stiffness, self.max_damping, self.max_mass)
         return np.array([limits[i] for i in range(4) if mask & (1 << i)], dtype=np.float64)
 
+    def dynamics(self) -> Dynamics | None:
+        """The rotor and servo loop declared, as the host's checks model them (None when the
+        device does not declare its inertia; estimator "" when it does not declare that)."""
+        if self.inertia <= 0:
+            return None
+        name = ESTIMATORS[self.estimator]
+        gains = tuple(self.observer_gains) if name in OBSERVERS else ()
+        return Dynamics(self.inertia, self.viscous, self.delay, self.velocity_cutoff,
+                        self.acceleration_cutoff, gains, name)  # fmt: skip
+
 
 def encode_info(info: InfoPayload) -> bytes:
-    """Bytes of a GET_INFO answer."""
+    """Bytes of a GET_INFO answer: 58 for protocol 2.0, else sealed with the estimator."""
     major, minor, patch = info.firmware
-    return _INFO.pack(
+    base = _INFO.pack(
         _INFO_MAGIC,
         info.protocol_version,
         info.kind,
@@ -167,14 +195,33 @@ def encode_info(info: InfoPayload) -> bytes:
         info.viscous,
         info.coulomb,
     )
+    if not info.protocol_minor:
+        return base
+    extension = _ESTIMATOR.pack(
+        info.protocol_minor,
+        info.estimator,
+        0,
+        info.velocity_cutoff,
+        info.acceleration_cutoff,
+        *info.observer_gains,
+    )
+    return _sealed(base + extension)
 
 
 def decode_info(data: bytes) -> InfoPayload:
-    """Parse a GET_INFO answer, or raise ProtocolError."""
+    """Parse a GET_INFO answer (2.1, or 2.0's 58 bytes: estimator undeclared), or raise
+    ProtocolError."""
     data = bytes(data)
-    if len(data) != INFO_SIZE:
-        raise ProtocolError(f"device info is {len(data)} bytes, expected {INFO_SIZE}")
-    magic, version, kind, major, minor, patch, rate, *rest = _INFO.unpack(data)
+    if len(data) not in (INFO_V20_SIZE, INFO_SIZE):
+        raise ProtocolError(
+            f"device info is {len(data)} bytes, expected {INFO_SIZE} (or {INFO_V20_SIZE})"
+        )
+    extension = (
+        _decode_estimator(_unsealed(data, "device info"))
+        if len(data) > INFO_V20_SIZE
+        else {"protocol_minor": 0}
+    )
+    magic, version, kind, major, minor, patch, rate, *rest = _INFO.unpack_from(data)
     tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, delay, watchdog, ramp = rest[:12]
     inertia, viscous, coulomb = rest[12:]
     if magic != _INFO_MAGIC:
@@ -194,10 +241,46 @@ def decode_info(data: bytes) -> InfoPayload:
         raise ProtocolError("device info has an invalid block, report or buffer size")
     if delay > MAX_DELAY:
         raise ProtocolError(f"device info declares a {delay}-period delay, at most {MAX_DELAY}")
+    if any(extension.get("observer_gains", ())):
+        radius = observer_radius(extension["observer_gains"], 1.0 / rate)
+        if not radius < 1.0:
+            raise ProtocolError(
+                f"device info declares an observer whose estimate diverges (its error map's "
+                f"spectral radius is {radius:.4g}, not below 1)"
+            )
     return InfoPayload(
         kind, rate, tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, watchdog, ramp,
-        inertia, viscous, coulomb, delay, (major, minor, patch), version,
+        inertia, viscous, coulomb, delay, (major, minor, patch), version, **extension,
     )  # fmt: skip
+
+
+def observer_radius(gains: tuple[float, ...], period: float) -> float:
+    """Spectral radius of an observer's error map (I - L C) A over a period (below 1: its
+    estimate converges): A predicts angle, velocity and acceleration with the last held."""
+    a = np.array([[1.0, period, period * period / 2.0], [0.0, 1.0, period], [0.0, 0.0, 1.0]])
+    error = (np.eye(3) - np.outer(np.asarray(gains, dtype=np.float64), [1.0, 0.0, 0.0])) @ a
+    with np.errstate(all="ignore"):
+        radius = np.abs(np.linalg.eigvals(error)).max() if np.isfinite(error).all() else np.inf
+    return float(radius)
+
+
+def _decode_estimator(data: bytes) -> dict:
+    """The fields 2.1 adds to GET_INFO (bytes 58 on, CRC already checked), or ProtocolError."""
+    minor, code, reserved, vcut, acut, *gains = _ESTIMATOR.unpack_from(data, INFO_V20_SIZE)
+    if minor < 1 or reserved:
+        raise ProtocolError(f"device info has minor version {minor} or reserved bytes set")
+    if code not in ESTIMATORS:
+        raise ProtocolError(f"device info declares an unknown estimator {code}")
+    if not all(np.isfinite(x) and x >= 0 for x in (vcut, acut)):
+        raise ProtocolError("device info has a negative or non-finite estimator cut-off")
+    observer = ESTIMATORS[code] in ("kalman", "tracking")
+    if not all(np.isfinite(g) for g in gains) or observer != any(gains):
+        raise ProtocolError(
+            f"device info declares gains {gains} for its {ESTIMATORS[code] or 'undeclared'} "
+            "estimator (an observer has finite gains, a filter none)"
+        )
+    return {"protocol_minor": minor, "estimator": code, "velocity_cutoff": vcut,
+            "acceleration_cutoff": acut, "observer_gains": tuple(gains)}  # fmt: skip
 
 
 def encode_limits(max_torque: float, watchdog_ms: int) -> bytes:

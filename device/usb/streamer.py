@@ -11,7 +11,6 @@ from collections.abc import Iterable, Iterator
 
 import numpy as np
 
-from device.sim.params import KnobParams
 from device.sim.stability import stability_flags
 from device.usb import protocol as p
 from device.usb.errors import DeviceFault, DeviceUnderrun, UsbDeviceError
@@ -219,14 +218,11 @@ class Stream:
 
     def _flags(self, time: np.ndarray, layers: dict[str, np.ndarray]) -> tuple:
         """The sim's stability rules applied to the coefficients sent (kinesthetic devices)."""
-        info = self.link.info
-        if "k" not in layers or info.inertia <= 0:
+        dynamics = self.link.info.dynamics()
+        if "k" not in layers or dynamics is None:
             return ()
-        params = KnobParams(rate=self.rate, quantum=info.encoder_resolution,
-                            max_torque=float(self.limits[0]), inertia=info.inertia,
-                            viscous=info.viscous, coulomb=info.coulomb,
-                            delay=info.delay)  # fmt: skip
-        return tuple(stability_flags(time, layers["k"], layers["b"], layers.get("m"), params))
+        k, b, m = layers["k"], layers["b"], layers.get("m")
+        return tuple(stability_flags(time, k, b, m, dynamics, 1.0 / self.rate))
 
     def warnings(self) -> list[str]:
         """Sentences about values the host had to change before sending them."""

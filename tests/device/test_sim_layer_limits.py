@@ -50,12 +50,14 @@ def test_flags_fire_just_above_the_limit(layer: str, fraction: float, flagged: b
     zero = np.zeros(1)
     damping = value if layer == "b" else zero
     mass = zero if layer == "b" else value
-    kinds = {f.kind for f in stability_flags(np.zeros(1), zero, damping, mass, p)}
+    kinds = {
+        f.kind for f in stability_flags(np.zeros(1), zero, damping, mass, p.dynamics, p.period)
+    }
     # with the knob's own damping the lowest stable mass is -J: below it the inertia is cancelled
     name = {"b": "damping-limit", "m": "mass-limit", "m-": "mass-cancels-inertia"}[layer]
     assert (name in kinds) == flagged
     if flagged:
-        flags = stability_flags(np.zeros(1), zero, damping, mass, p)
+        flags = stability_flags(np.zeros(1), zero, damping, mass, p.dynamics, p.period)
         flag = next(f for f in flags if f.kind == name)
         assert flag.margins[0] == pytest.approx(abs(0.001 * limit), rel=1e-6)
 

@@ -27,7 +27,9 @@ def test_flag_fires_exactly_above_the_boundary(
     p = KnobParams(rate=rate, viscous=viscous)
     limit = passive_stiffness(viscous, virtual_damping, p.period)
     k = np.array([np.nextafter(limit, 0.0), limit, np.nextafter(limit, np.inf), 1.01 * limit])
-    flags = stability_flags(np.arange(4) / rate, k, np.full(4, virtual_damping), None, p)
+    flags = stability_flags(
+        np.arange(4) / rate, k, np.full(4, virtual_damping), None, p.dynamics, p.period
+    )
     passivity = [f for f in flags if f.kind == "passivity"]
     assert len(passivity) == 1
     np.testing.assert_array_equal(passivity[0].times, np.arange(2, 4) / rate)
@@ -96,6 +98,6 @@ def test_negative_damping_and_cancelled_inertia_are_flagged_and_finite() -> None
 def test_mass_boundary_is_exactly_minus_the_rotor_inertia() -> None:
     p = KnobParams()
     m = np.array([np.nextafter(-p.inertia, 0.0), -p.inertia, np.nextafter(-p.inertia, -1.0)])
-    flags = stability_flags(np.arange(3.0), np.zeros(3), np.zeros(3), m, p)
+    flags = stability_flags(np.arange(3.0), np.zeros(3), np.zeros(3), m, p.dynamics, p.period)
     assert [f.kind for f in flags] == ["mass-cancels-inertia"]
     np.testing.assert_array_equal(flags[0].times, [1.0, 2.0])

@@ -36,11 +36,12 @@ def test_a_report_has_the_documented_byte_layout() -> None:
     assert p.decode_report(wire).samples.tolist() == rows.tolist()
 
 
-def test_device_info_round_trips_in_58_bytes() -> None:
+def test_device_info_2_0_round_trips_in_58_bytes() -> None:
     info = p.InfoPayload(p.KIND_KINESTHETIC, 10_000, 0.25, 50.0, 0.5, 1e-3, 1e-5, 4096, 512,
-                         100, p.ALL_CHANNELS, 50, 10, 1e-5, 1e-4, 1e-3, 1, (2, 3, 4))  # fmt: skip
+                         100, p.ALL_CHANNELS, 50, 10, 1e-5, 1e-4, 1e-3, 1, (2, 3, 4),
+                         protocol_minor=0)  # fmt: skip
     wire = p.encode_info(info)
-    assert len(wire) == p.INFO_SIZE == 58
+    assert len(wire) == p.INFO_V20_SIZE == 58
     assert wire[41] == 1  # the delay sits in the byte version 2 first shipped as reserved 0
     back = p.decode_info(wire)
     assert back.rate_hz == 10_000 and back.firmware == (2, 3, 4) and back.report_samples == 100
@@ -58,7 +59,7 @@ def test_device_info_round_trips_in_58_bytes() -> None:
 )  # fmt: skip
 def test_device_info_with_a_bad_field_is_refused(field: int, value: float, words: str) -> None:
     info = p.InfoPayload(p.KIND_KINESTHETIC, 10_000, 0.18, 50.0, 0.5, 1e-3, 1e-5, 4096, 512,
-                         100, p.ALL_CHANNELS, 50, 10)  # fmt: skip
+                         100, p.ALL_CHANNELS, 50, 10, protocol_minor=0)  # fmt: skip
     fields = list(p._INFO.unpack(p.encode_info(info)))
     fields[field] = value
     with pytest.raises(p.ProtocolError, match=words):
@@ -161,18 +162,27 @@ def test_every_single_bit_flip_is_refused_by_the_crc() -> None:
     rows = np.array([[0.1, -2.0, 0.05], [0.2, 3.0, -0.17], [0.0, 0.0, 0.0]], dtype=np.float32)
     report = p.encode_report(p.Report(5, p.STATE_RUNNING, 300, 0, 90, 0, 0, 4, rows))
     block = p.encode_block(p.Block(9, p.ALL_CHANNELS, rows[:, :1].repeat(4, axis=1), False))
+    info = p.encode_info(
+        p.InfoPayload(p.KIND_KINESTHETIC, 10_000, 0.18, 100.0, 1.0, 1e-2, 1e-5, 4096, 512, 100,
+                      p.ALL_CHANNELS, 50, 10, 1e-5, 1e-4, 1e-3, 1, estimator=p.ESTIMATOR_KALMAN,
+                      velocity_cutoff=2000.0, observer_gains=(0.3, 1900.0, 5.6e6))
+    )  # fmt: skip
     flips = 0
-    for wire, decode in ((report, p.decode_report), (block, p.decode_block)):
+    for wire, decode in ((report, p.decode_report), (block, p.decode_block), (info, p.decode_info)):
         for bit in range(8 * len(wire)):
             damaged = bytearray(wire)
             damaged[bit // 8] ^= 1 << (bit % 8)
             with pytest.raises(p.ProtocolError):
                 decode(bytes(damaged))
             flips += 1
-    assert flips == 8 * (len(report) + len(block)) == 8 * (72 + 64)
+    assert flips == 8 * (len(report) + len(block) + len(info)) == 8 * (72 + 64 + 86)
 
 
-@given(st.one_of(st.binary(max_size=60), _near_valid(b"HI", p.INFO_SIZE)))
+@given(
+    st.one_of(
+        st.binary(max_size=90), _near_valid(b"HI", p.INFO_V20_SIZE), _near_valid(b"HI", p.INFO_SIZE)
+    )
+)
 def test_any_bytes_decode_to_device_info_or_a_protocol_error(data: bytes) -> None:
     try:
         info = p.decode_info(data)

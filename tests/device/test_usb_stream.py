@@ -121,7 +121,9 @@ def test_a_mass_layer_streams_all_four_coefficients() -> None:
     )
     knob, emulated = rig()
     usb = knob.play(blocks, Hand("free"))
-    assert_same_as_sim(usb, SimKnob(delay=1).play(blocks, Hand("free")))
+    # the same firmware: the float32 observer gains it declares and runs
+    sim = SimKnob(delay=1, gains=emulated.knob.info.observer_gains)
+    assert_same_as_sim(usb, sim.play(blocks, Hand("free")))
     assert {b.mask for b in wire(emulated)} == {p.ALL_CHANNELS}
     assert len(emulated.wire_out[0]) == 1616  # 10 ms of four float32 channels, header, CRC
 

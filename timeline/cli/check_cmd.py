@@ -42,20 +42,19 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def device_limits(info: DeviceInfo) -> dict[str, float]:
-    """The limits a device's declarations imply (empty when it declares no dynamics)."""
+    """The limits a device's declarations imply (empty when it declares no dynamics; the
+    passive stiffness alone when it does not declare its estimator)."""
     from timeline.limits import servo
 
     dyn = info.dynamics
     if dyn is None or info.kind != "kinesthetic":
         return {}
-    low, high = servo.mass_limits(dyn, info.period)
-    return {
-        "passive_stiffness": float(servo.passive_stiffness(dyn.damping, 0.0, info.period,
-                                                           dyn.delay)),
-        "damping": servo.damping_limit(dyn, info.period),
-        "mass_low": low,
-        "mass_high": high,
-    }  # fmt: skip
+    limits = {"passive_stiffness": float(servo.passive_stiffness(dyn.damping, 0.0, info.period,
+                                                                 dyn.delay))}  # fmt: skip
+    if dyn.estimator_declared:
+        low, high = servo.mass_limits(dyn, info.period)
+        limits.update(damping=servo.damping_limit(dyn, info.period), mass_low=low, mass_high=high)
+    return limits
 
 
 def as_json(path: str, info: DeviceInfo, report: Report, hand: Hand) -> str:

@@ -16,7 +16,7 @@ from typing import Any
 # dynamics, hand, info) do not pull in numpy with the telemetry and programs.
 _EXPORTS = {
     **dict.fromkeys(("Device", "Progress", "device_names", "open_device"), "device"),
-    **dict.fromkeys(("ACTUATOR_TYPES", "Actuator", "Dynamics"), "dynamics"),
+    **dict.fromkeys(("ACTUATOR_TYPES", "ESTIMATORS", "Actuator", "Dynamics"), "dynamics"),
     **dict.fromkeys(("DeviceError", "HandSpecError"), "errors"),
     **dict.fromkeys(("DEFAULT_PUSH_MNM", "DEFAULT_TURN_DEG_PER_S", "HAND_MODES", "Hand"), "hand"),
     **dict.fromkeys(("HAND_MODELS", "HandModel"), "hand_models"),
@@ -53,6 +53,7 @@ __all__ = [
     "HAND_MODES",
     "KINDS",
     "TELEMETRY_COLUMNS",
+    "ESTIMATORS",
     "Actuator",
     "CoefficientBlock",
     "Device",

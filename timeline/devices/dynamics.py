@@ -13,6 +13,10 @@ from dataclasses import dataclass
 from timeline.devices.errors import DeviceError
 
 ACTUATOR_TYPES = ("lra", "voice-coil")
+# How a firmware estimates velocity and acceleration: low-passed differences, or an observer
+# (a steady-state Kalman gain, or a tracking gain placing its poles). "" = not declared.
+ESTIMATORS = ("filter", "kalman", "tracking")
+OBSERVERS = ("kalman", "tracking")
 
 
 def _check(owner: str, **values: float) -> None:
@@ -31,7 +35,9 @@ class Dynamics:
     the acceleration estimate (the difference of the velocity estimate); or, when
     `observer_gains` holds a gain L = (l0, l1, l2), an observer of angle, velocity and
     acceleration: each period it predicts them with acceleration held constant and corrects the
-    prediction by L times the reading's miss (a Kalman or tracking observer).
+    prediction by L times the reading's miss. `estimator` names which: "filter", "kalman" or
+    "tracking" (an observer, with its gains), or "" when the device does not declare it (an
+    older USB device): then the damping and mass limits, which depend on it, cannot be checked.
     """
 
     inertia: float
@@ -40,6 +46,7 @@ class Dynamics:
     velocity_cutoff: float = 0.0
     acceleration_cutoff: float = 0.0
     observer_gains: tuple[float, ...] = ()  # L of an observer that estimates instead, or ()
+    estimator: str = "filter"  # "filter", "kalman", "tracking", or "" (not declared)
 
     def __post_init__(self) -> None:
         _check(
@@ -56,10 +63,24 @@ class Dynamics:
             raise DeviceError(
                 f"a device's observer gains are three numbers, not {self.observer_gains}"
             )
+        if self.estimator not in ("", *ESTIMATORS):
+            raise DeviceError(
+                f"a device's estimator is one of {', '.join(ESTIMATORS)}, not {self.estimator!r}"
+            )
+        if bool(self.observer_gains) != (self.estimator in OBSERVERS):
+            raise DeviceError(
+                f"a device's {self.estimator or 'undeclared'} estimator "
+                f"{'needs' if self.estimator in OBSERVERS else 'takes no'} observer gains"
+            )
         if self.inertia <= 0:
             raise DeviceError(f"a device's inertia must be positive, not {self.inertia}")
         if int(self.delay) != self.delay:
             raise DeviceError(f"a device's delay is whole servo periods, not {self.delay}")
+
+    @property
+    def estimator_declared(self) -> bool:
+        """Whether the damping and mass limits (which depend on the estimator) can be found."""
+        return bool(self.estimator)
 
 
 @dataclass(frozen=True)

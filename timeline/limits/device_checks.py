@@ -93,17 +93,19 @@ def stability(design: Sampled, info: DeviceInfo) -> list[Finding]:
         lambda v, lim: f"keep the stiffness below {lim:.3g} N*m/rad (lower the gain, or the "
         "damping that eats into the margin)",
     )  # fmt: skip
-    b_max = servo.damping_limit(dyn, period)
-    out += _over(
-        design, "damping-limit", "b", b - b_max, b, np.full(n, b_max), "N*m*s/rad",
-        "virtual damping above the largest the servo loop renders without chatter",
-        lambda v, lim: f"keep the damping below {lim:.3g} N*m*s/rad",
-    )  # fmt: skip
     out += _over(
         design, "negative-damping", "b", -b, b, zero, "N*m*s/rad",
         "negative virtual damping: the device pushes energy into the hand",
         lambda v, lim: "make the damping zero or positive there",
     )  # fmt: skip
+    declared = dyn.estimator_declared  # the damping and mass limits depend on the estimator
+    if declared:
+        b_max = servo.damping_limit(dyn, period)
+        out += _over(
+            design, "damping-limit", "b", b - b_max, b, np.full(n, b_max), "N*m*s/rad",
+            "virtual damping above the largest the servo loop renders without chatter",
+            lambda v, lim: f"keep the damping below {lim:.3g} N*m*s/rad",
+        )  # fmt: skip
     m = design.terms.get("m")
     if m is not None:
         cancel = dyn.inertia + m <= 0
@@ -113,6 +115,7 @@ def stability(design: Sampled, info: DeviceInfo) -> list[Finding]:
             "negative virtual mass cancels the rotor's inertia",
             lambda v, lim: f"keep the mass above {lim:.3g} kg*m^2",
         )  # fmt: skip
+    if m is not None and declared:
         low, high = servo.mass_limits(dyn, period)
         excess = np.where(cancel, 0.0, np.maximum(m - high, low - m))
         out += _over(

@@ -3,7 +3,8 @@
 * Vibration (a drive layer with an actuator, or a vibrotactile device): the drive clamped to the
   device's maximum, then through the actuator's response.
 * A knob: the project played on the simulated knob built from the device's declarations (rate,
-  maximum torque, rotor, delay, estimators) with a hand (turning, on a position project);
+  maximum torque, rotor, delay, and the estimator it declares: filter cut-offs, or a Kalman or
+  tracking observer with its own gains) with a hand (turning, on a position project);
   "designed" is the torque law evaluated on the motion that happened with exact (zero-phase)
   derivatives of the angle, "rendered" is the torque the motor applied: the difference is the
   clamp and the estimators' lag and noise.
@@ -75,12 +76,15 @@ def knob(project: Project, info: DeviceInfo, hand: Hand, quality: str = "normal"
     turns, else the same hand at the default speed), and the trace also holds the angle.
     """
     options: dict[str, object] = {"rate": info.rate, "max_torque": info.max_output}
-    if info.dynamics is not None:
-        dyn = info.dynamics
+    dyn, assumed = info.dynamics, ""
+    if dyn is not None:
         options.update(inertia=dyn.inertia, viscous=dyn.damping, delay=int(dyn.delay),
                        velocity_cutoff=dyn.velocity_cutoff,
-                       acceleration_cutoff=dyn.acceleration_cutoff,
-                       estimator="kalman" if dyn.observer_gains else "filter")  # fmt: skip
+                       acceleration_cutoff=dyn.acceleration_cutoff)  # fmt: skip
+        if dyn.estimator_declared:  # the estimator it declares, with the very gains it runs
+            options.update(estimator=dyn.estimator, gains=dyn.observer_gains)
+        else:
+            assumed = " (estimator not declared: the sim's Kalman observer assumed)"
     if project.axis == "position" and hand.mode != "turn":
         hand = Hand("turn", DEFAULT_TURN_DEG_PER_S, model=hand.model)
     with open_device("sim", **options) as sim:
@@ -96,7 +100,7 @@ def knob(project: Project, info: DeviceInfo, hand: Hand, quality: str = "normal"
     zero = np.zeros(len(tel))
     layer = {k: tel.layers.get(k, zero) for k in "dkbm"}
     designed = layer["d"] - layer["k"] * angle - layer["b"] * velocity - layer["m"] * acceleration
-    label = f"torque on {info.name}, hand {hand}"
+    label = f"torque on {info.name}, hand {hand}{assumed}"
     if project.axis == "time":
         return Trace(label, "mNm", 1e3, tel.time, designed, tel.torque, step=period)
     program = playback.program

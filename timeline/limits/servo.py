@@ -26,7 +26,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.linalg import expm
 
-from timeline.devices import Dynamics
+from timeline.devices import DeviceError, Dynamics
 
 UNSTABLE = 1.0 + 1e-9  # spectral radius above this grows; the free knob's angle mode sits at 1
 
@@ -84,6 +84,9 @@ def loop_matrix(
     """The free knob's closed loop over one period: state [theta, omega, meas, vel, the
     acceleration estimator's state (filter: prev_vel, acc; an observer: its angle, velocity and
     acceleration), tau(n-1) ... tau(n-D)]."""
+    if not dynamics.estimator_declared:
+        raise DeviceError("the servo loop cannot be modelled: the device does not declare its "
+                          "velocity and acceleration estimator")  # fmt: skip
     observed = bool(dynamics.observer_gains)
     first_delay = 7 if observed else 6  # index of tau(n-1) in the state
     delay = int(dynamics.delay)
