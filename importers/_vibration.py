@@ -19,13 +19,40 @@ MAX_JSON_BYTES = 64 * 2**20
 
 def load_json(path: Path, what: str) -> Any:
     """Parse a JSON file, or a FormatError naming the format."""
-    raw = path.read_bytes()
+    return parse_json(json_text(path, what), path.name, what)
+
+
+def json_text(path: Path, what: str) -> str:
+    """A JSON file's text, or a FormatError: larger than MAX_JSON_BYTES (judged by its size
+    before anything is read) or not UTF-8."""
+    path = Path(path)
+    too_large = FormatError(
+        f"{path.name} is larger than {MAX_JSON_BYTES // 2**20} MB, the most an {what} file may be"
+    )
+    size = path.stat().st_size
+    if size > MAX_JSON_BYTES:
+        raise too_large
+    with path.open("rb") as file:
+        # read(n) allocates n bytes up front: ask for the size judged (+1 sees a file that grew)
+        raw = file.read(size + 1)
     if len(raw) > MAX_JSON_BYTES:
-        raise FormatError(f"{path.name} is too large to be an {what} file")
+        raise too_large
     try:
-        return json.loads(raw.decode("utf-8-sig"))
-    except (UnicodeDecodeError, ValueError, RecursionError):
-        raise FormatError(f"{path.name} is not an {what} file (it is not valid JSON)") from None
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise _not_json(path.name, what) from None
+
+
+def parse_json(text: str, name: str, what: str, **hooks: Any) -> Any:
+    """json.loads(text, **hooks), or a FormatError saying the file is not JSON."""
+    try:
+        return json.loads(text, **hooks)
+    except (ValueError, RecursionError):
+        raise _not_json(name, what) from None
+
+
+def _not_json(name: str, what: str) -> FormatError:
+    return FormatError(f"{name} is not an {what} file (it is not valid JSON)")
 
 
 def number(value: Any, where: str, lo: float = -math.inf, hi: float = math.inf) -> float:

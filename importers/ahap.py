@@ -156,11 +156,35 @@ def _dynamic(param: Any, where: str) -> tuple[str, float, list[tuple[float, floa
     return pid, time, [(time, vib.number(param.get("ParameterValue"), f"{where}: value", *bounds))]
 
 
+def _too_many(count: int, name: str) -> FormatError:
+    return FormatError(f"{name} has {count:,} pattern entries; at most {MAX_EVENTS:,} are read")
+
+
+def _refuse_long_pattern(text: str, name: str) -> None:
+    """Refuse a pattern of more than MAX_EVENTS entries without building it.
+
+    Every pattern entry is a JSON object, and an object opens with a "{" that no escape can
+    stand for, so the count of "{" in the text is never below the number of entries (braces in
+    strings and nested objects only add): at or under the limit, the file is parsed as usual.
+    Over it, the text is parsed once with each object dropped as soon as it is read (keeping
+    only the length of a "Pattern" list), so the exact count costs about the text's size in
+    memory instead of the whole document's objects (8x the file).
+    """
+    if text.count("{") <= MAX_EVENTS or not text.lstrip().startswith("{"):
+        return  # (a document that is not an object is refused as no AHAP once parsed)
+    last: list[Any] = [None]
+
+    def dropped(pairs: list[tuple[str, Any]]) -> None:
+        last[0] = dict(pairs).get("Pattern")  # the document itself is the last object read
+
+    vib.parse_json(text, name, "AHAP", object_pairs_hook=dropped)
+    if isinstance(last[0], list) and len(last[0]) > MAX_EVENTS:
+        raise _too_many(len(last[0]), name)
+
+
 def _entries(pattern: list[Any], name: str):
     if len(pattern) > MAX_EVENTS:
-        raise FormatError(
-            f"{name} has {len(pattern):,} pattern entries; at most {MAX_EVENTS:,} are read"
-        )
+        raise _too_many(len(pattern), name)
     events: list[dict[str, Any]] = []
     controls: list[tuple[str, float, list[tuple[float, float]]]] = []
     notes: list[str] = []
@@ -358,7 +382,9 @@ def _pairs(t: np.ndarray, v: np.ndarray) -> list[tuple[float, float]]:
 
 def read_design(path: Path) -> tuple[VibrationDesign, str, list[str]]:
     """The AHAP file's design, its sharpness convention, and notes on what was approximated."""
-    doc = vib.load_json(path, "AHAP")
+    text = vib.json_text(path, "AHAP")
+    _refuse_long_pattern(text, path.name)
+    doc = vib.parse_json(text, path.name, "AHAP")
     if not isinstance(doc, dict) or not isinstance(doc.get("Pattern"), list):
         raise FormatError(f"{path.name} is not an AHAP file (it has no Pattern list)")
     events, controls, notes = _entries(doc["Pattern"], path.name)

@@ -3,17 +3,24 @@
 from __future__ import annotations
 
 import math
+import threading
+from collections import OrderedDict
 from fractions import Fraction
 from functools import cache
 
 import numpy as np
 
+from timeline import samples
 from timeline.quality import QualityPreset
 
 # Samples of context kept either side of a segment so soxr's filter settles before the part used.
 _SOXR_MARGIN = 256
 _SINC_HALF = 32  # taps either side of a fractional-delay filter
 _SINC_BETA = 9.0  # its Kaiser window: about -90 dB side lobes
+# A recording whose resampled whole is at most this many samples is resampled whole once per
+# (step, quality) and kept; its clips are read from that (longer ones are resampled clip by clip).
+WHOLE_SAMPLES = 2**20
+_WHOLE_BYTES = 64 * 2**20  # resampled recordings kept, least recently used dropped first
 
 
 def sample_grid(
@@ -101,12 +108,17 @@ def _band_limited(
         # Evaluate the same points in ascending order and flip back.
         start = start + step * (n - 1)
         step = -step
-    aligned = _aligned_start(start, step)
-    lo = aligned if aligned is not None else int(np.floor(start)) - _SOXR_MARGIN
-    hi = int(np.ceil(start + step * (n - 1))) + _SOXR_MARGIN + 1
-    segment = _take(data, lo, hi - lo)
     soxr_quality = "VHQ" if quality.resampler == "soxr-vhq" else "HQ"
-    resampled = soxr.resample(segment, 1.0, 1.0 / step, quality=soxr_quality)
+    whole = _whole(data, step, soxr_quality)
+    if whole is not None:
+        lo, resampled = whole
+        aligned = None
+    else:
+        aligned = _aligned_start(start, step)
+        lo = aligned if aligned is not None else int(np.floor(start)) - _SOXR_MARGIN
+        hi = int(np.ceil(start + step * (n - 1))) + _SOXR_MARGIN + 1
+        segment = _take(data, lo, hi - lo)
+        resampled = soxr.resample(segment, 1.0, 1.0 / step, quality=soxr_quality)
     # resampled[j] sits at source index lo + j*step; the wanted samples at offset + i.
     offset = (start - lo) / step
     nearest = round(offset)
@@ -116,6 +128,55 @@ def _band_limited(
         first = math.floor(offset)
         out = _fractional_delay(resampled, first, offset - first, n)
     return out[::-1] if reverse else out
+
+
+_kept: OrderedDict[tuple[int, float, str], tuple[np.ndarray, int, np.ndarray]] = OrderedDict()
+_kept_bytes = 0
+_kept_lock = threading.Lock()
+
+
+def _whole(data: np.ndarray, step: float, soxr_quality: str) -> tuple[int, np.ndarray] | None:
+    """(lo, the whole recording resampled from source index lo on), kept for its next clips, or
+    None for a recording that is long or that its owner may still change.
+
+    lo lies a whole number of output steps before source index 0, so clips on the project grid
+    (source offsets on the output grid) read resampled samples exactly. One resampling of the
+    whole recording (zeros around it) also puts every clip away from the resampler's start and
+    end transients, which a segment cut out per clip had within its margin.
+    """
+    if len(data) / step > WHOLE_SAMPLES or not samples.frozen(data):
+        return None
+    global _kept_bytes
+    key = (id(data), step, soxr_quality)
+    with _kept_lock:
+        kept = _kept.get(key)
+        if kept is not None and kept[0] is data:
+            _kept.move_to_end(key)
+            return kept[1], kept[2]
+    import soxr
+
+    lo = _aligned_start(0.0, step)
+    lo = -_SOXR_MARGIN if lo is None else lo
+    hi = len(data) + _SOXR_MARGIN + 1
+    resampled = soxr.resample(_take(data, lo, hi - lo), 1.0, 1.0 / step, quality=soxr_quality)
+    resampled.setflags(write=False)
+    with _kept_lock:
+        old = _kept.pop(key, None)
+        _kept_bytes -= 0 if old is None else old[2].nbytes
+        _kept[key] = (data, lo, resampled)  # the data kept too, so its id is not reused
+        _kept_bytes += resampled.nbytes
+        while _kept_bytes > _WHOLE_BYTES and len(_kept) > 1:
+            _, (_, _, dropped) = _kept.popitem(last=False)
+            _kept_bytes -= dropped.nbytes
+    return lo, resampled
+
+
+def forget_resampled() -> None:
+    """Drop the kept resampled recordings (a benchmark's render from scratch, a test)."""
+    global _kept_bytes
+    with _kept_lock:
+        _kept.clear()
+        _kept_bytes = 0
 
 
 @cache

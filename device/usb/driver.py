@@ -183,10 +183,14 @@ def _describe(dev: Any) -> str:
     try:
         w = link.info
         product = dev.product or "haptic device"
-        return (
+        line = (
             f"{where}: {product}, {p.KINDS[w.kind]}, {w.rate_hz} Hz, "
             f"max {_shown(w.max_torque) * (1 if w.kind else 1e3):g}"
             f"{' of full scale' if w.kind else ' mNm'}"
         )
+        if w.kind == p.KIND_KINESTHETIC:
+            estimator = p.ESTIMATORS[w.estimator] or "estimator not declared"
+            line += f", {w.delay}-period delay, {estimator}"
+        return line
     finally:
         link.close()

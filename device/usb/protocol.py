@@ -241,10 +241,27 @@ def decode_info(data: bytes) -> InfoPayload:
         raise ProtocolError("device info has an invalid block, report or buffer size")
     if delay > MAX_DELAY:
         raise ProtocolError(f"device info declares a {delay}-period delay, at most {MAX_DELAY}")
+    if any(extension.get("observer_gains", ())):
+        radius = observer_radius(extension["observer_gains"], 1.0 / rate)
+        if not radius < 1.0:
+            raise ProtocolError(
+                f"device info declares an observer whose estimate diverges (its error map's "
+                f"spectral radius is {radius:.4g}, not below 1)"
+            )
     return InfoPayload(
         kind, rate, tmax, kmax, bmax, mmax, res, cap, max_block, report, channels, watchdog, ramp,
         inertia, viscous, coulomb, delay, (major, minor, patch), version, **extension,
     )  # fmt: skip
+
+
+def observer_radius(gains: tuple[float, ...], period: float) -> float:
+    """Spectral radius of an observer's error map (I - L C) A over a period (below 1: its
+    estimate converges): A predicts angle, velocity and acceleration with the last held."""
+    a = np.array([[1.0, period, period * period / 2.0], [0.0, 1.0, period], [0.0, 0.0, 1.0]])
+    error = (np.eye(3) - np.outer(np.asarray(gains, dtype=np.float64), [1.0, 0.0, 0.0])) @ a
+    with np.errstate(all="ignore"):
+        radius = np.abs(np.linalg.eigvals(error)).max() if np.isfinite(error).all() else np.inf
+    return float(radius)
 
 
 def _decode_estimator(data: bytes) -> dict:

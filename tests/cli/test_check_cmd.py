@@ -131,3 +131,20 @@ def test_check_hand_sets_what_the_knob_makes_felt(tmp_path: Path, capsys) -> Non
     assert cli.main(["check", str(path), "--hand", "claw"]) == 1
     err = capsys.readouterr().err
     assert "cannot read hand 'claw'" in err and err.count("\n") == 1
+
+
+def test_check_on_the_usb_knob_reports_the_sims_limits_for_its_declared_estimator(capsys) -> None:
+    """The emulated firmware runs the Kalman observer with a one-period delay and declares
+    both: `check --device usb` reports the delayed sim's limits (float32 on the wire apart)."""
+    project = str(EXAMPLES / "fan_knob.htl")
+    usb = ["--device", "usb", "--device-option", "emulate=true"]
+    assert cli.main(["check", project, "--json", *usb]) == 0
+    on_usb = json.loads(capsys.readouterr().out)
+    assert cli.main(["check", project, "--json", "--device-option", "delay=1"]) == 0
+    on_sim = json.loads(capsys.readouterr().out)
+    assert on_usb["device"]["dynamics"]["estimator"] == "kalman"
+    assert len(on_usb["device"]["dynamics"]["observer_gains"]) == 3
+    for name in ("damping", "mass_low", "mass_high"):
+        assert on_usb["limits"][name] == pytest.approx(on_sim["limits"][name], rel=1e-6)
+    assert on_usb["limits"]["mass_high"] == pytest.approx(1.8044e-5, rel=1e-4)
+    assert on_usb["limits"]["damping"] == pytest.approx(0.07811, rel=1e-4)

@@ -97,12 +97,17 @@ def test_a_device_with_the_test_ids_but_another_interface_is_refused() -> None:
 
 
 def test_discover_describes_each_device_found() -> None:
-    backend = EmulatedBackend(EmulatedDevice(), EmulatedDevice(EmulatedKnob(vibrotactile=True)))
+    old = EmulatedDevice(EmulatedKnob(declare_estimator=False))  # protocol 2.0
+    backend = EmulatedBackend(
+        EmulatedDevice(), EmulatedDevice(EmulatedKnob(vibrotactile=True)), old
+    )
     assert UsbKnob.discover(backend=backend) == [
         "usb 1209:0001 on bus 1 address 1: Haptic knob (emulated), kinesthetic, 10000 Hz, "
-        "max 180 mNm",
+        "max 180 mNm, 1-period delay, kalman",
         "usb 1209:0001 on bus 1 address 2: Haptic knob (emulated), vibrotactile, 10000 Hz, "
         "max 1 of full scale",
+        "usb 1209:0001 on bus 1 address 3: Haptic knob (emulated), kinesthetic, 10000 Hz, "
+        "max 180 mNm, 1-period delay, estimator not declared",
     ]
 
 

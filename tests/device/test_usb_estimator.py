@@ -9,6 +9,8 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from device.sim import KnobParams
 from device.sim.device import SimKnob
@@ -175,3 +177,45 @@ def test_the_sim_runs_gains_given_as_a_device_option() -> None:
     for bad, estimator in (("1,2", "kalman"), ("a,b,c", "kalman"), (declared, "filter")):
         with pytest.raises(DeviceError, match="observer gains are three finite numbers"):
             SimKnob(estimator=estimator, gains=bad)
+
+
+@pytest.mark.parametrize("gains", [(2.5, 0.0, 0.0), (0.5, 2500.0, 1e12), (3e38, 3e38, 3e38)])
+def test_an_observer_that_diverges_is_refused(gains: tuple[float, float, float]) -> None:
+    with pytest.raises(p.ProtocolError, match="observer whose estimate diverges"):
+        p.decode_info(p.encode_info(replace(INFO, observer_gains=gains)))
+
+
+def test_the_declared_observers_converge() -> None:
+    for estimator in ("kalman", "tracking"):
+        dyn = _usb(KnobParams(delay=1, estimator=estimator)).info.dynamics
+        assert p.observer_radius(dyn.observer_gains, 1e-4) < 0.99
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    code=st.integers(0, 255),
+    reserved=st.integers(0, 3),
+    cutoffs=st.tuples(*[st.floats(width=32, allow_nan=True, allow_infinity=True)] * 2),
+    gains=st.tuples(*[st.floats(width=32, allow_nan=True, allow_infinity=True)] * 3),
+)
+def test_any_sealed_estimator_decodes_to_a_model_or_a_protocol_error(
+    code: int, reserved: int, cutoffs: tuple, gains: tuple
+) -> None:
+    """Fields a CRC cannot judge: whatever they hold, the host builds its loop model or refuses
+    in one sentence, and a model it builds gives finite or infinite limits, never NaN."""
+    body = p.encode_info(INFO)[:58] + struct.pack("<BBHfffff", 1, code, reserved, *cutoffs, *gains)
+    try:
+        info = p.decode_info(body + zlib.crc32(body).to_bytes(4, "little"))
+    except p.ProtocolError:
+        return
+    dyn = info.dynamics()
+    assert dyn.estimator in ("", "filter", "kalman", "tracking")
+    if dyn.estimator_declared:
+        assert not np.isnan(servo.damping_limit(dyn, 1e-4))
+
+
+def test_rendered_on_a_device_without_a_declared_estimator_says_what_it_assumed() -> None:
+    old = _usb(declare=False).info
+    trace = rendered_knob(layered("mass", 5e-6, seconds=0.02), old, Hand("turn", 90.0))
+    assert trace.label.endswith("(estimator not declared: the sim's Kalman observer assumed)")
+    assert trace.time.size == 200

@@ -55,12 +55,12 @@ def _source_positions(clip: Clip, tile: Tile, pos: np.ndarray) -> tuple[np.ndarr
 
 
 def _needs_delay(start: float, step: float, count: int) -> bool:
-    """True when _band_limited would finish a clip with a fractional delay (as resample decides)."""
+    """True when a clip starts between the samples of its recording resampled whole (as
+    resample._band_limited decides), so it takes the fractional delay."""
     if step < 0:
         start, step = start + step * (count - 1), -step
-    if _aligned_start(start, step) is not None:
-        return False
-    offset = (start - (math.floor(start) - _SOXR_MARGIN)) / step
+    lo = _aligned_start(0.0, step)
+    offset = (start - (-_SOXR_MARGIN if lo is None else lo)) / step
     return abs(offset - round(offset)) >= 1e-9
 
 
