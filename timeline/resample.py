@@ -171,6 +171,14 @@ def _whole(data: np.ndarray, step: float, soxr_quality: str) -> tuple[int, np.nd
     return lo, resampled
 
 
+def forget_resampled() -> None:
+    """Drop the kept resampled recordings (a benchmark's render from scratch, a test)."""
+    global _kept_bytes
+    with _kept_lock:
+        _kept.clear()
+        _kept_bytes = 0
+
+
 @cache
 def _kaiser() -> np.ndarray:
     """The sinc filter's window (the same every call: computed once)."""

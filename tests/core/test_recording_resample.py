@@ -52,8 +52,8 @@ def test_the_kept_resampling_gives_the_bits_of_a_fresh_one() -> None:
     p = _trimmed(0.10003, 0.4, 1.3, 1.37)
     first = Mixer().render(p, 0.0, 1.5)["drive"].copy()
     assert len(resample._kept) >= 1
-    resample._kept.clear()
-    resample._kept_bytes = 0
+    resample.forget_resampled()
+    assert len(resample._kept) == 0
     again = Mixer().render(p, 0.0, 1.5)["drive"]
     assert np.array_equal(first, again) and np.abs(first).max() > 0.1
 
