@@ -22,14 +22,20 @@ class PiecewiseCubic:
                  d: np.ndarray) -> None:  # fmt: skip
         self.x, self.a, self.b, self.c, self.d = x, a, b, c, d
 
-    def __call__(self, u: np.ndarray) -> np.ndarray:
+    def __call__(self, u: np.ndarray, monotone: bool = False) -> np.ndarray:
+        """The curve at u; `monotone` tells that u is sorted either way (a render's grid), which
+        otherwise a pass over u finds out."""
         u = np.asarray(u, dtype=np.float64)
         if u.ndim == 1 and u.size >= SAMPLES_PER_PIECE * (len(self.x) - 1) and u.size > 1:
-            with np.errstate(invalid="ignore"):
-                steps = np.diff(u)
-            if (steps >= 0).all():
+            if monotone:
+                up, down = u[0] <= u[-1], u[0] > u[-1]
+            else:
+                with np.errstate(invalid="ignore"):
+                    steps = np.diff(u)
+                up, down = (steps >= 0).all(), (steps <= 0).all()
+            if up:
                 return self._sorted(u)
-            if (steps <= 0).all():
+            if down:
                 return self._sorted(u[::-1])[::-1]
         i = np.clip(np.searchsorted(self.x, u, side="right") - 1, 0, len(self.x) - 2)
         s = u - self.x[i]

@@ -19,7 +19,7 @@ from timeline.errors import EditError
 from timeline.generators import GENERATORS
 from timeline.quality import QualityPreset
 from timeline.resample import sample_grid
-from timeline.splines import natural_cubic, pchip
+from timeline.splines import PiecewiseCubic, natural_cubic, pchip
 from timeline.vibration_tile import VibrationTile
 
 MAX_TILE_SAMPLES = 2**31  # ~16 GiB of float64; anything larger is refused as a hostile size
@@ -193,11 +193,14 @@ class SplineTile:
         u = np.asarray(u, dtype=np.float64)
         return self._values(u, *_range(u))
 
-    def _values(self, u: np.ndarray, lo: float, hi: float) -> np.ndarray:
-        """evaluate(u) for float64 u whose least and greatest values are lo and hi."""
+    def _values(self, u: np.ndarray, lo: float, hi: float, grid: bool = False) -> np.ndarray:
+        """evaluate(u) for float64 u whose least and greatest values are lo and hi (with `grid`,
+        u is a render's arithmetic grid: sorted, and clipping keeps it so)."""
         first, last = self.points[0], self.points[-1]
         inside = u if first[0] <= lo and hi <= last[0] else np.clip(u, first[0], last[0])
-        out = np.asarray(self._curve(inside), dtype=np.float64)
+        curve = self._curve
+        out = curve(inside, grid) if isinstance(curve, PiecewiseCubic) else curve(inside)
+        out = np.asarray(out, dtype=np.float64)
         # each mask only where some u needs it (a clip's grid is usually inside the curve)
         if lo <= first[0]:
             out = np.where(u <= first[0], first[1], out)
@@ -206,7 +209,10 @@ class SplineTile:
         return _zero_outside(u, out, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
-        return _evaluate_decimated(self._values, u0, du, n, quality.control_decimation)
+        def on_grid(u: np.ndarray, lo: float, hi: float) -> np.ndarray:
+            return self._values(u, lo, hi, grid=True)
+
+        return _evaluate_decimated(on_grid, u0, du, n, quality.control_decimation)
 
     def with_name(self, name: str) -> SplineTile:
         return SplineTile(self.points, self.duration, self.method, name)

@@ -88,3 +88,17 @@ def test_a_buzz_a_grasp_cannot_feel_is_shaded_when_the_grasp_is_chosen(window, q
     lanes = {win.view.geometry.lane_at(s.rect().center().y()) for s in shaded}
     assert lanes == {0, 1}  # the drive lanes, whose sum is the drive
     win.grab().save("/tmp/findings_grasp.png")
+
+
+def test_a_check_that_could_not_run_is_said_with_no_findings() -> None:
+    from timeline.gui.findings_overlay import summary
+    from timeline.limits.check import Report
+
+    quiet = Report((), ("sim declares no slew limit",))
+    assert summary(quiet) == "No device or perception limit crossed"
+    usb = "usb does not declare its velocity and acceleration estimator: damping and mass limits"
+    skipped = Report((), (f"{usb} not checked (stiffness and saturation are)", "x: y not checked"))
+    assert summary(skipped) == (
+        f"No device or perception limit crossed; but {usb} not checked "
+        "(stiffness and saturation are) (+1 more)"
+    )

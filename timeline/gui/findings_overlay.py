@@ -71,9 +71,13 @@ class FindingShade(QGraphicsRectItem):
 
 
 def summary(report: Report) -> str:
-    """The message bar's line for a report."""
+    """The message bar's line for a report; with no findings, the first check that could not run."""
     if not report.findings:
-        return "No device or perception limit crossed"
+        skipped = [n for n in report.notes if "not checked" in n]
+        more = f" (+{len(skipped) - 1} more)" if len(skipped) > 1 else ""
+        return "No device or perception limit crossed" + (
+            f"; but {skipped[0]}{more}" if skipped else ""
+        )
     first = report.findings[0]
     more = len(report.findings) - 1
     tail = f" (+{more} more: hover the shading)" if more else ""
@@ -166,6 +170,7 @@ class FindingsOverlay(QObject):
             return
         report = result.report
         changed = self.report is None or _keys(self.report) != _keys(report)
+        changed = changed or self.report.notes != report.notes
         self.report, self.traces, self.peaks = report, result.traces, result.peaks
         self._draw(self.doc.project, report)
         if changed:
