@@ -41,9 +41,7 @@ class Arrange:
         def moved(project: Project) -> Project:
             starts = [project.find_clip(i)[1].start for i in ids]
             shift = max(step, -min(starts))  # the earliest clip stops at 0
-            for clip_id, start in zip(ids, starts, strict=True):
-                project = edits.move_clip(project, clip_id, start + shift)
-            return project
+            return edits.shift_clips(project, ids, shift)
 
         if self.doc.apply("nudge", moved):
             axis = self.doc.project.axis

@@ -49,7 +49,4 @@ def _move_all(
     project: Project, clip_id: str, start: float, track_id: str, others: list[str], shift: float
 ) -> Project:
     project = edits.move_clip(project, clip_id, start, track_id)
-    for other in others:
-        _, clip = project.find_clip(other)
-        project = edits.move_clip(project, other, clip.start + shift)
-    return project
+    return edits.shift_clips(project, others, shift)
