@@ -227,7 +227,16 @@ def test_dragging_the_design_clip_takes_its_emphasis_along_in_one_undo_step(
 def test_delete_duplicate_copy_and_nudge_of_the_design_clip_include_its_emphasis(designer, qtbot):
     win = designer
     envelopes = win.doc.project.tracks[0].clips[0].id
+    accents = [c.id for c in win.doc.project.tracks[1].clips]
     click(win, clip_point(win, envelopes, 0.1))
+    # drawn selected with the design (they travel with it) while the selection is the design
+    assert win.doc.selected_clips == [envelopes]
+    assert all(win.view.clip_item(c).selected for c in [envelopes, *accents])
+    click(win, clip_point(win, accents[0]) + QPoint(3, 0))
+    assert [c for c in [envelopes, *accents] if win.view.clip_item(c).selected] == accents[:1]
+    click(win, clip_point(win, envelopes, 0.1))
+    if os.environ.get("HT_SCREENSHOTS"):
+        win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "design_selected.png"))
     QTest.keyClick(win.view.viewport(), Qt.Key.Key_Delete)
     assert _starts(win) == ([], [])
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
