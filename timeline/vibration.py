@@ -29,6 +29,7 @@ The shared interface for .haptic/AHAP import and export and for `convert`:
 
 from __future__ import annotations
 
+from bisect import bisect_left, bisect_right
 from dataclasses import dataclass
 from typing import Any
 
@@ -163,11 +164,9 @@ def emphasis_of(project: Project, clip_id: str) -> list[str]:
     below = _emphasis_below(project, track.id)
     if below is None or not isinstance(project.tile(clip.tile_id), VibrationTile):
         return []
-    return [
-        c.id
-        for c in below.clips
-        if clip.start <= c.start <= clip.end and _is_emphasis(project.tile(c.tile_id))
-    ]
+    lo = bisect_left(below.clips, clip.start, key=_start)  # a track's clips are in start order
+    hi = bisect_right(below.clips, clip.end, key=_start)
+    return [c.id for c in below.clips[lo:hi] if _is_emphasis(project.tile(c.tile_id))]
 
 
 def with_emphasis(project: Project, clip_ids: list[str]) -> list[str]:
@@ -176,6 +175,10 @@ def with_emphasis(project: Project, clip_ids: list[str]) -> list[str]:
     for clip_id in clip_ids:
         chosen += emphasis_of(project, clip_id)
     return list(dict.fromkeys(chosen))
+
+
+def _start(clip: Clip) -> float:
+    return clip.start
 
 
 def _is_emphasis(tile: object) -> bool:
