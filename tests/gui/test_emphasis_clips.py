@@ -260,3 +260,26 @@ def test_delete_duplicate_copy_and_nudge_of_the_design_clip_include_its_emphasis
     assert designs == [0.0, 2.0] and accents == pytest.approx([0.3, 0.7, 2.3, 2.7])
     pasted = win.doc.project.tracks[0].clips[1].id
     assert win.doc.project.tracks[1].clips[2].id in vibration.emphasis_of(win.doc.project, pasted)
+
+
+def test_a_frequency_drag_while_playing_reaches_the_device(designer, qtbot):
+    win = designer
+    click(win, clip_point(win, win.doc.project.tracks[0].clips[0].id, 0.1))
+    editor, canvas = win.editor, win.editor.canvas
+    choose(qtbot, editor.lane_box, "Frequency")
+    win.activateWindow()
+    qtbot.waitUntil(win.isActiveWindow, timeout=5_000)
+    win.transport.loop.setChecked(True)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert win.player.playing
+    stream = win.player.stream
+    qtbot.waitUntil(lambda: stream.state.live_version >= 0, timeout=5_000)
+    before = stream.state.version
+    press = QPoint(int(canvas.x_of(0.6)), int(canvas.y_of(0.3)))
+    _drag_on(canvas, press, QPoint(press.x(), int(canvas.y_of(0.6))))
+    assert stream.state.version > before  # each step of the drag handed to the stream
+    played = stream._project.tile(editor.tile_id).design.frequency[1]
+    assert played == editor.tile.design.frequency[1] and played[1] == pytest.approx(0.6, abs=0.02)
+    qtbot.waitUntil(lambda: stream.state.live_version == stream.state.version, timeout=5_000)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert not win.player.playing
