@@ -224,12 +224,20 @@ class _Control:
         if start >= self._t[-1]:
             left = self._v[-1]
         else:  # a curve that starts before the last one ended replaces it from there
-            self.t, self.v = np.array(self._t), np.array(self._v)
-            left = float(self.at(np.array([start]), left=True)[0])
             k = bisect.bisect_left(self._t, start)
+            left = self._just_before(start, k)
             del self._t[k:], self._v[k:]
         self._t += [start] + [p[0] for p in points]
         self._v += [left] + [p[1] for p in points]
+
+    def _just_before(self, u: float, k: int) -> float:
+        """at(u, left=True) for one time u with bisect_left(_t, u) == k, from the two points
+        around it (the same operations as at(), so the same bits, without an array of all)."""
+        j = max(k - 1, 0)
+        nxt = min(j + 1, len(self._t) - 1)
+        width = self._t[nxt] - self._t[j]
+        slope = (self._v[nxt] - self._v[j]) / width if width > 0 else 0.0
+        return self._v[j] + slope * (u - self._t[j])
 
     def freeze(self) -> _Control:
         self.t, self.v = np.array(self._t), np.array(self._v)

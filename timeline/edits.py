@@ -338,6 +338,27 @@ def move_clip(
     return _put_clip(project, moved, target.id)
 
 
+def shift_clips(project: Project, clip_ids: Iterable[str], shift: float) -> Project:
+    """Move clips by one time shift on their tracks (as move_clip on each), each changed track
+    rebuilt once: dragging a design with thousands of emphasis clips stays linear."""
+    ids = set(clip_ids)
+    for clip_id in ids:
+        project.find_clip(clip_id)
+    if not math.isfinite(shift):
+        raise EditError(f"clips move by a finite time, not {shift!r}")
+    changed = {}
+    for track in project.tracks:
+        if not ids.isdisjoint(track.clips_by_id):
+            moved = (replace(c, start=c.start + shift) if c.id in ids else c for c in track.clips)
+            changed[track.id] = tuple(sorted(moved, key=_order))
+    return replace(
+        project,
+        tracks=tuple(
+            replace(t, clips=changed[t.id]) if t.id in changed else t for t in project.tracks
+        ),
+    )
+
+
 def duplicate_clip(
     project: Project, clip_id: str, start: float | None = None, track_id: str | None = None
 ) -> tuple[Project, str]:

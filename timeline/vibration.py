@@ -13,6 +13,9 @@ The shared interface for .haptic/AHAP import and export and for `convert`:
   moving, deleting or copying an emphasis is an ordinary clip edit. The tile keeps the
   breakpoints; the carrier is synthesised only when rendering, exactly at any rate.
   `design_placements` does the same for an importer.
+* `emphasis_of(project, clip_id)` / `with_emphasis(project, clip_ids)`: the emphasis clips that
+  belong to a design clip (on the Emphasis track just below, starting within its span), which
+  the editor moves, copies, duplicates and deletes with it.
 * `design_of(project, track_ids=None) -> VibrationDesign`: the sounding drive tracks read back as
   a design, in timeline seconds. Exact (the same breakpoints) while the design's clips are
   unedited; clip gain, track gain, trims and squeeze-stretch are applied to the breakpoints
@@ -26,6 +29,7 @@ The shared interface for .haptic/AHAP import and export and for `convert`:
 
 from __future__ import annotations
 
+from bisect import bisect_left, bisect_right
 from dataclasses import dataclass
 from typing import Any
 
@@ -61,8 +65,10 @@ __all__ = [
     "VibrationTile",
     "design_of",
     "design_placements",
+    "emphasis_of",
     "emphasis_tile",
     "place_design",
+    "with_emphasis",
 ]
 
 DRIVE = "drive"
@@ -131,14 +137,52 @@ def _split(design: VibrationDesign) -> tuple[VibrationDesign, tuple[Emphasis, ..
     return envelopes, design.emphasis
 
 
-def _emphasis_track(project: Project, track_id: str) -> tuple[Project, str]:
-    """The drive track named EMPHASIS_TRACK just below `track_id`, added there if missing."""
+def _emphasis_below(project: Project, track_id: str) -> Track | None:
+    """The drive track named EMPHASIS_TRACK just below `track_id`, if there is one."""
     index = next(k for k, t in enumerate(project.tracks) if t.id == track_id)
     below = project.tracks[index + 1] if index + 1 < len(project.tracks) else None
     if below is not None and below.kind == DRIVE and below.name == EMPHASIS_TRACK:
+        return below
+    return None
+
+
+def _emphasis_track(project: Project, track_id: str) -> tuple[Project, str]:
+    """The drive track named EMPHASIS_TRACK just below `track_id`, added there if missing."""
+    below = _emphasis_below(project, track_id)
+    if below is not None:
         return project, below.id
+    index = next(k for k, t in enumerate(project.tracks) if t.id == track_id)
     project, new = edits.add_track(project, DRIVE, EMPHASIS_TRACK)
     return edits.move_track(project, new, index + 1), new
+
+
+def emphasis_of(project: Project, clip_id: str) -> list[str]:
+    """A design clip's emphasis: the emphasis clips starting within its span (ends included) on
+    the Emphasis track just below its track. The editor moves, nudges, copies, duplicates and
+    deletes them with it. Empty for any other clip."""
+    track, clip = project.find_clip(clip_id)
+    below = _emphasis_below(project, track.id)
+    if below is None or not isinstance(project.tile(clip.tile_id), VibrationTile):
+        return []
+    lo = bisect_left(below.clips, clip.start, key=_start)  # a track's clips are in start order
+    hi = bisect_right(below.clips, clip.end, key=_start)
+    return [c.id for c in below.clips[lo:hi] if _is_emphasis(project.tile(c.tile_id))]
+
+
+def with_emphasis(project: Project, clip_ids: list[str]) -> list[str]:
+    """The clips followed by their designs' emphasis clips (emphasis_of), each id once."""
+    chosen = list(clip_ids)
+    for clip_id in clip_ids:
+        chosen += emphasis_of(project, clip_id)
+    return list(dict.fromkeys(chosen))
+
+
+def _start(clip: Clip) -> float:
+    return clip.start
+
+
+def _is_emphasis(tile: object) -> bool:
+    return isinstance(tile, GeneratorTile) and tile.generator == EMPHASIS
 
 
 def design_of(

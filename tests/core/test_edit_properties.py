@@ -168,3 +168,28 @@ def test_switching_variant_keeps_tiles_made_since_in_the_library():
     assert back.tracks == p.tracks  # the design of A
     assert tile_id in back.tiles and tile_id in back.tab("Scratch").tile_ids
     assert projectfile.loads(projectfile.dumps(back)) == back
+
+
+@settings(max_examples=50, deadline=None)
+@given(
+    st.lists(
+        st.tuples(st.integers(0, 1), st.floats(0.0, 3.0).map(lambda t: round(t, 2))),
+        min_size=1,
+        max_size=12,
+    ),
+    st.sets(st.integers(0, 13)),
+    st.floats(-2.0, 2.0).map(lambda t: round(t, 2)),
+)
+def test_shifting_clips_at_once_is_moving_each_in_turn(placed, chosen, shift):
+    p = base_project()
+    tracks = [t.id for t in p.tracks]
+    sine = p.tracks[0].clips[0].tile_id
+    for track, start in placed:  # equal starts included: the order is then by id
+        p, _ = edits.add_clip(p, tracks[track], sine, start)
+    ids = [c.id for t in p.tracks for c in t.clips]
+    moving = [ids[k] for k in sorted(chosen) if k < len(ids)]
+    one_by_one = p
+    for clip_id in moving:
+        start = one_by_one.find_clip(clip_id)[1].start
+        one_by_one = edits.move_clip(one_by_one, clip_id, start + shift)
+    assert edits.shift_clips(p, moving, shift).tracks == one_by_one.tracks

@@ -318,3 +318,58 @@ def test_frequency_breakpoints_are_edited_as_points_and_the_rendered_carrier_fol
         tile_edits.move_point(p, tile, 0, 0.5, 0.5, "loudness")
     with pytest.raises(EditError, match="finite"):
         tile_edits.add_point(p, tile, 0.7, float("nan"), tile_edits.FREQUENCY)
+
+
+def test_a_design_clip_s_emphasis_are_those_on_the_emphasis_track_within_its_span():
+    from timeline.vibration import emphasis_of, with_emphasis
+
+    p = _project(at=1.0)  # the design over 1..2 s, its emphasis (both at 1.5 s) below
+    design, accents = p.tracks[0].clips[0].id, [c.id for c in p.tracks[1].clips]
+    assert emphasis_of(p, design) == accents
+    assert with_emphasis(p, [accents[1], design]) == [accents[1], design, accents[0]]
+    assert emphasis_of(p, accents[0]) == []  # an emphasis carries nothing
+    p = edits.trim_clip(p, design, end=1.4)  # the design now ends before its emphasis
+    assert emphasis_of(p, design) == []
+    p = _project(at=1.0)
+    p = edits.move_track(p, p.tracks[1].id, 0)  # the Emphasis track is no longer below it
+    assert emphasis_of(p, p.tracks[1].clips[0].id) == []
+
+
+point_edits = st.lists(
+    st.tuples(
+        st.sampled_from(["move", "add", "remove"]),
+        st.integers(-1, 6),
+        st.floats(-0.5, 1.5) | st.sampled_from([float("nan"), float("inf")]),
+        st.floats(-2.0, 2.0) | st.sampled_from([float("nan"), -float("inf")]),
+        st.sampled_from(tile_edits.LANES),
+    ),
+    max_size=12,
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(point_edits)
+def test_any_run_of_point_edits_leaves_a_valid_design_or_says_why(steps):
+    p = _project()
+    tile = p.tracks[0].clips[0].tile_id
+    for op, index, t, v, lane in steps:
+        before = p.tile(tile).design
+        try:
+            if op == "move":
+                p = tile_edits.move_point(p, tile, index, t, v, lane)
+            elif op == "add":
+                p, _ = tile_edits.add_point(p, tile, t, v, lane)
+            else:
+                p = tile_edits.remove_point(p, tile, index, lane)
+        except EditError as exc:
+            assert str(exc) and p.tile(tile).design == before  # one sentence, nothing lost
+            continue
+        design = p.tile(tile).design
+        other = "frequency" if lane == "amplitude" else "amplitude"
+        assert getattr(design, other) == getattr(before, other)
+        for points in (design.amplitude, design.frequency):
+            times = [q[0] for q in points]
+            assert times == sorted(times) and all(0.0 <= x <= design.duration for x in times)
+            assert all(0.0 <= q[1] <= 1.0 for q in points)
+    x = _drive(p)
+    assert np.all(np.isfinite(x)) and np.max(np.abs(x)) <= 2.6 + 1e-9  # envelope 1, pulses 1, 0.6

@@ -21,6 +21,14 @@ def data_home(tmp_path, monkeypatch):
 
 
 @pytest.fixture(autouse=True)
+def empty_clipboard(qapp):
+    """Each test leaves the clipboard empty: the offscreen platform crashes when the process
+    exits while the clipboard holds clips (test_clipboard's first test alone showed it)."""
+    yield
+    qapp.clipboard().clear()
+
+
+@pytest.fixture(autouse=True)
 def settings_home(qapp, tmp_path):
     """QSettings (recent files) go to an ini file under a temporary folder, as a test app."""
     from PySide6.QtCore import QSettings

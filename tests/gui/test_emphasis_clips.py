@@ -10,7 +10,7 @@ import pytest
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtTest import QTest
 
-from timeline import edits
+from timeline import edits, vibration
 from timeline.vibration import Emphasis, VibrationDesign, place_design
 
 from .helpers import choose, click, clip_point, drag
@@ -167,6 +167,12 @@ def test_the_frequency_envelope_is_edited_in_its_own_lane_with_its_hz(designer, 
     ]
     assert frequency[0] == DESIGN.frequency[0] and frequency[-1] == DESIGN.frequency[-1]
     assert frequency[1] == pytest.approx((0.6, 0.6), abs=0.02)
+    # the exact value typed into the point's box, with the carrier it means
+    editor.v_box.selectAll()
+    QTest.keyClicks(editor.v_box, "0.25")
+    QTest.keyClick(editor.v_box, Qt.Key.Key_Return)
+    assert editor.tile.design.frequency[1] == (t, 0.25)
+    assert editor.hz_label.text() == "= 117.5 Hz"
     # a double-click adds a point to the frequency envelope; Delete takes it away again
     QTest.mouseDClick(
         canvas,
@@ -180,5 +186,77 @@ def test_the_frequency_envelope_is_edited_in_its_own_lane_with_its_hz(designer, 
     assert len(editor.tile.design.frequency) == 3
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the delete
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the add
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the typed value
     QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)  # the whole drag
     assert editor.tile.design.frequency == DESIGN.frequency
+
+
+def _starts(win) -> tuple[list[float], list[float]]:
+    """Clip starts on the design's track and on its Emphasis track."""
+    design, accents = win.doc.project.tracks[:2]
+    return [c.start for c in design.clips], [c.start for c in accents.clips]
+
+
+def test_dragging_the_design_clip_takes_its_emphasis_along_in_one_undo_step(
+    designer, qtbot, tmp_path
+):
+    win = designer
+    before = _haptic_emphasis(win, qtbot, tmp_path / "before.haptic")
+    envelopes = win.doc.project.tracks[0].clips[0].id
+    start = clip_point(win, envelopes, 0.1)  # left of the first emphasis (0.3 s) in time
+    drag(win, start, start + QPoint(round(0.1 * PX), 0))  # 20 px: 100 ms later
+    if os.environ.get("HT_SCREENSHOTS"):
+        win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "design_moved.png"))
+    designs, accents = _starts(win)
+    assert designs[0] == pytest.approx(0.1, abs=0.5 / PX)
+    assert accents == pytest.approx([0.3 + designs[0], 0.7 + designs[0]], abs=1e-12)
+    after = _haptic_emphasis(win, qtbot, tmp_path / "after.haptic")
+    assert [a[0] - b[0] for a, b in zip(after, before, strict=True)] == pytest.approx(
+        [0.1, 0.1], abs=0.5 / PX
+    )
+    assert [a[1:] for a in after] == [b[1:] for b in before]
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert _starts(win) == ([0.0], [0.3, 0.7])
+    # an emphasis dragged on its own still moves alone
+    first = win.doc.project.tracks[1].clips[0].id
+    press = clip_point(win, first) + QPoint(3, 0)
+    drag(win, press, press + QPoint(round(0.1 * PX), 0))
+    assert _starts(win)[0] == [0.0] and _starts(win)[1][1] == 0.7
+
+
+def test_delete_duplicate_copy_and_nudge_of_the_design_clip_include_its_emphasis(designer, qtbot):
+    win = designer
+    envelopes = win.doc.project.tracks[0].clips[0].id
+    accents = [c.id for c in win.doc.project.tracks[1].clips]
+    click(win, clip_point(win, envelopes, 0.1))
+    # drawn selected with the design (they travel with it) while the selection is the design
+    assert win.doc.selected_clips == [envelopes]
+    assert all(win.view.clip_item(c).selected for c in [envelopes, *accents])
+    click(win, clip_point(win, accents[0]) + QPoint(3, 0))
+    assert [c for c in [envelopes, *accents] if win.view.clip_item(c).selected] == accents[:1]
+    click(win, clip_point(win, envelopes, 0.1))
+    if os.environ.get("HT_SCREENSHOTS"):
+        win.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / "design_selected.png"))
+    QTest.keyClick(win.view.viewport(), Qt.Key.Key_Delete)
+    assert _starts(win) == ([], [])
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    assert _starts(win) == ([0.0], [0.3, 0.7])
+    click(win, clip_point(win, envelopes, 0.1))
+    QTest.keyClick(win, Qt.Key.Key_D, Qt.KeyboardModifier.ControlModifier)  # into the gap after
+    designs, accents = _starts(win)
+    assert designs == [0.0, 1.2] and accents == pytest.approx([0.3, 0.7, 1.5, 1.9])
+    assert len(win.doc.selected_clips) == 3  # the copy and its emphasis, ready to move on
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    click(win, clip_point(win, envelopes, 0.1))
+    QTest.keyClick(win, Qt.Key.Key_Right, Qt.KeyboardModifier.AltModifier)  # one grid step
+    step = win.view.scene().grid_step()
+    assert _starts(win) == ([step], pytest.approx([0.3 + step, 0.7 + step]))
+    QTest.keyClick(win, Qt.Key.Key_Z, Qt.KeyboardModifier.ControlModifier)
+    click(win, clip_point(win, envelopes, 0.1))
+    QTest.keyClick(win, Qt.Key.Key_C, Qt.KeyboardModifier.ControlModifier)
+    win.view.scene().set_cursor(2.0)
+    QTest.keyClick(win, Qt.Key.Key_V, Qt.KeyboardModifier.ControlModifier)
+    designs, accents = _starts(win)
+    assert designs == [0.0, 2.0] and accents == pytest.approx([0.3, 0.7, 2.3, 2.7])
+    pasted = win.doc.project.tracks[0].clips[1].id
+    assert win.doc.project.tracks[1].clips[2].id in vibration.emphasis_of(win.doc.project, pasted)

@@ -24,6 +24,7 @@ MODULES = {  # benchmark name -> module, in running order
     "convert": "timeline.bench.convert",
     "formats": "timeline.bench.formats",
     "waves": "timeline.bench.waves",
+    "design-drag": "timeline.bench.design_drag",
 }
 
 

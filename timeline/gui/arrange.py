@@ -8,6 +8,7 @@ from collections.abc import Callable
 from timeline import edits, markers
 from timeline.model import Project
 from timeline.placement import free_start
+from timeline.vibration import emphasis_of, with_emphasis
 
 from .document import Document
 from .geometry import axis_text
@@ -29,8 +30,9 @@ class Arrange:
         return scene.playhead_u if self.playing() else scene.cursor_u
 
     def nudge(self, steps: int) -> None:
-        """Move the selected clips by whole grid steps (Alt+Left/Right)."""
-        ids = list(self.doc.selected_clips)
+        """Move the selected clips (a design with its emphasis) by whole grid steps
+        (Alt+Left/Right)."""
+        ids = with_emphasis(self.doc.project, self.doc.selected_clips)
         if not ids:
             self.doc.message.emit("select clips to nudge", "error")
             return
@@ -39,16 +41,15 @@ class Arrange:
         def moved(project: Project) -> Project:
             starts = [project.find_clip(i)[1].start for i in ids]
             shift = max(step, -min(starts))  # the earliest clip stops at 0
-            for clip_id, start in zip(ids, starts, strict=True):
-                project = edits.move_clip(project, clip_id, start + shift)
-            return project
+            return edits.shift_clips(project, ids, shift)
 
         if self.doc.apply("nudge", moved):
             axis = self.doc.project.axis
             self.doc.message.emit(f"nudged by {axis_text(step, axis)} (Ctrl+Z undoes)", "info")
 
     def duplicate(self) -> None:
-        """Copy each selected clip into the first gap after it that fits it (Ctrl+D)."""
+        """Copy each selected clip into the first gap after it that fits it (Ctrl+D); a design's
+        emphasis clips are copied with it, as far along as it."""
         ids = list(self.doc.selected_clips)
         if not ids:
             self.doc.message.emit("select a clip first", "error")
@@ -56,11 +57,17 @@ class Arrange:
         copies: list[str] = []
 
         def duplicated(project: Project) -> Project:
-            for clip_id in ids:
+            carried = {clip_id: emphasis_of(project, clip_id) for clip_id in ids}
+            along = {c for group in carried.values() for c in group}
+            for clip_id in (c for c in ids if c not in along):
                 track, clip = project.find_clip(clip_id)
                 at = free_start(project, track.id, clip.duration, clip.end)
                 project, new_id = edits.duplicate_clip(project, clip_id, at)
                 copies.append(new_id)
+                for accent in carried[clip_id]:
+                    shifted = project.find_clip(accent)[1].start + at - clip.start
+                    project, new_id = edits.duplicate_clip(project, accent, shifted)
+                    copies.append(new_id)
             return project
 
         if self.doc.apply("duplicate", duplicated):

@@ -14,6 +14,7 @@ from PySide6.QtGui import QGuiApplication
 from timeline import clipboard, edits
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
+from timeline.vibration import with_emphasis
 
 from .document import Document
 
@@ -44,10 +45,14 @@ class ClipClipboard:
     def __init__(self, doc: Document, where: Callable[[], float]) -> None:
         self.doc, self.where = doc, where
 
+    def chosen(self) -> list[str]:
+        """What copy and cut take: the selected clips, a design with its emphasis."""
+        return with_emphasis(self.doc.project, self.doc.selected_clips)
+
     def copy(self) -> bool:
         """Copy the selected clips."""
         try:
-            clips = clipboard.snippet(self.doc.project, list(self.doc.selected_clips))
+            clips = clipboard.snippet(self.doc.project, self.chosen())
         except HapticTimelineError as exc:
             self.doc.message.emit(str(exc), "error")
             return False
@@ -58,7 +63,7 @@ class ClipClipboard:
 
     def cut(self) -> None:
         """Copy the selected clips and remove them (one undo step)."""
-        ids = list(self.doc.selected_clips)
+        ids = self.chosen()
         if self.copy():
             self.doc.apply("cut", edits.remove_clips, ids)
 

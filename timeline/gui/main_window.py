@@ -23,6 +23,7 @@ from timeline.errors import HapticTimelineError
 from timeline.formats import all_formats
 from timeline.model import Project
 from timeline.placement import into_gap
+from timeline.vibration import with_emphasis
 
 from . import variants
 from .arrange import Arrange
@@ -285,7 +286,8 @@ class MainWindow(QMainWindow):
         self.doc.apply(label, all_of)
 
     def delete(self) -> None:
-        """Remove the selected clips, when the timeline (not another region) has focus."""
+        """Remove the selected clips (a design with its emphasis), when the timeline (not another
+        region) has focus."""
         focus = QApplication.focusWidget()
         elsewhere = (self.palette, self.editor, self.inspector, self.transport, self.headers)
         if focus is not None and any(r is focus or r.isAncestorOf(focus) for r in elsewhere):
@@ -293,7 +295,7 @@ class MainWindow(QMainWindow):
                 "Delete removes clips when the timeline has focus: click a clip first", "error"
             )
             return
-        ids = list(self.doc.selected_clips)
+        ids = with_emphasis(self.doc.project, self.doc.selected_clips)
         if ids:
             self.doc.apply("delete", edits.remove_clips, ids)
 

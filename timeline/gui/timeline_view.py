@@ -9,6 +9,7 @@ from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QW
 from PySide6.QtWidgets import QGraphicsView, QLabel, QMenu
 
 from timeline.model import Track
+from timeline.vibration import with_emphasis
 
 from . import lane_scale
 from .clip_item import ClipItem
@@ -79,9 +80,11 @@ class TimelineView(QGraphicsView):
     # --- model -> view ---------------------------------------------------------------------
 
     def refresh(self) -> None:
-        """Redraw from the document."""
+        """Redraw from the document; a selected design's emphasis clips are drawn selected too,
+        since moving, copying and deleting it takes them along."""
         self.scene().min_width = self.viewport().width()
-        self.scene().sync(self.doc.project, self.doc.selected_clips)
+        project = self.doc.project
+        self.scene().sync(project, with_emphasis(project, self.doc.selected_clips))
 
     def clip_items(self) -> list[ClipItem]:
         return list(self.scene().items_by_clip.values())

@@ -6,20 +6,23 @@ from PySide6.QtCore import QPointF
 
 from timeline import edits
 from timeline.model import Project
+from timeline.vibration import with_emphasis
 
 from ..geometry import axis_text
 from .base import Gesture
 
 
 class MoveGesture(Gesture):
-    """Move the pressed clip, and the other selected clips with it in time."""
+    """Move the pressed clip, and the other selected clips (and a vibration design's emphasis
+    clips, timeline.vibration.emphasis_of) with it in time."""
 
     label = "move clip"
 
     def __init__(self, view, press: QPointF, clip_id: str) -> None:
         super().__init__(view, press)
         self.clip_id = clip_id
-        self.others = [c for c in self.doc.selected_clips if c != clip_id]
+        carried = with_emphasis(self.base, [clip_id, *self.doc.selected_clips])
+        self.others = [c for c in carried if c != clip_id]
         track, self.clip = self.base.find_clip(clip_id)
         self.track_id = track.id
 
@@ -46,7 +49,4 @@ def _move_all(
     project: Project, clip_id: str, start: float, track_id: str, others: list[str], shift: float
 ) -> Project:
     project = edits.move_clip(project, clip_id, start, track_id)
-    for other in others:
-        _, clip = project.find_clip(other)
-        project = edits.move_clip(project, other, clip.start + shift)
-    return project
+    return edits.shift_clips(project, others, shift)
