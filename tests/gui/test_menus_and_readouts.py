@@ -156,6 +156,9 @@ def test_an_import_lands_on_the_selected_clips_track_where_it_covers_nothing(
         win.view.viewport(), Qt.MouseButton.LeftButton, pos=clip_point(win, win.ids["c1"], 0.25)
     )
     assert win.view.scene().cursor_u == pytest.approx(0.75, abs=1 / PX)  # inside the sine
+    win.view.geometry.px_per_unit = 2000.0  # the view shows about half a second
+    win.view.refresh()
+    win.view.horizontalScrollBar().setValue(0)
     win.import_files([tmp_path / "piece.wav"], win.import_track(), win.arrange.here())
     qtbot.waitUntil(lambda: not win.jobs, timeout=10_000)
     assert win.messages.text.startswith("imported piece.wav"), win.messages.history
@@ -164,3 +167,5 @@ def test_an_import_lands_on_the_selected_clips_track_where_it_covers_nothing(
     new = next(c for c in clips if c.id != win.ids["c1"])
     assert new.start == pytest.approx(1.5)  # after the sine, not on top of it
     assert new.duration == pytest.approx(0.4)
+    bar, x = win.view.horizontalScrollBar(), win.view.geometry.x(1.5)  # the view went to it
+    assert bar.value() > 0 and bar.value() <= x <= bar.value() + win.view.viewport().width()

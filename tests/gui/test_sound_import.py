@@ -51,6 +51,8 @@ def test_menu_command_imports_the_design_and_the_sound(window, qtbot, monkeypatc
     win = window
     monkeypatch.setattr(QFileDialog, "getOpenFileNames", lambda *a, **k: ([str(bursts)], ""))
     tracks_before = len(win.doc.project.tracks)
+    win.view.geometry.px_per_unit = 2000.0  # the view shows about half a second from 0 s
+    win.view.refresh()
     QTest.keyClick(win, Qt.Key.Key_H, CTRL_SHIFT)
     qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
     project = win.doc.project
@@ -69,6 +71,8 @@ def test_menu_command_imports_the_design_and_the_sound(window, qtbot, monkeypatc
     tiles = [project.tile(c.tile_id) for c in placed]
     designs = [t.design for t in tiles if isinstance(t, VibrationTile)]
     assert designs == [dataclasses.replace(expected, emphasis=())]
+    bar, x = win.view.horizontalScrollBar(), win.view.geometry.x(1.5)
+    assert bar.value() > 0 and bar.value() <= x <= bar.value() + win.view.viewport().width()
     new = [*placed, *project.tracks[1].clips, *project.tracks[-1].clips]
     assert set(win.doc.selected_clips) == {c.id for c in new}
     assert win.sound_import.dock.isVisible()

@@ -537,6 +537,8 @@ class MainWindow(QMainWindow):
             return
         self.doc.replace(f"import {path.name}", project)
         self.doc.select_clips(clip_ids)
+        if clip_ids:
+            self.view.keep_visible(min(project.find_clip(i)[1].start for i in clip_ids))
         notes = "; ".join(imported.notes)
         self.messages.show_message(f"imported {path.name}" + (f" ({notes})" if notes else ""))
 

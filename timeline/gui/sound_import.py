@@ -241,6 +241,7 @@ class SoundImport(QObject):
             return
         doc.replace(f"import {found.path.name} as haptic", project)
         doc.select_clips(new)
+        self.window.view.keep_visible(min(project.find_clip(i)[1].start for i in new))
         a = found.analysis
         self.window.messages.show_message(
             f"{found.path.name} as haptic: {len(a.amplitude)} amplitude and {len(a.frequency)} "
