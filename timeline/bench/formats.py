@@ -119,6 +119,23 @@ def _row(name: str, path: Path, work, repeat: int) -> list[object]:
     return [name, len(text) / 1e6, 1e3 * parse, 1e3 * seconds, seconds / parse]
 
 
+def _export_rows(project: Project, label: str, stem: Path, repeat: int) -> list[list[object]]:
+    """Rows timing the project's export to .haptic and to AHAP (the file written once first)."""
+    rows = []
+    for ext in (".haptic", ".ahap"):
+        target = stem.with_suffix(ext)
+        exporting.export_project(project, target)
+        rows.append(
+            _row(
+                f"{label} export {ext}",
+                target,
+                lambda t=target: exporting.export_project(project, t),
+                repeat,
+            )  # fmt: skip
+        )
+    return rows
+
+
 def run(quick: bool, out: Path) -> list[Table]:
     table = Table(
         "Vibration formats: import and export (best of runs)",
@@ -140,44 +157,19 @@ def run(quick: bool, out: Path) -> list[Table]:
             )
         )
         project, _ = importing.import_file(edits.new_project(templates=False), haptic)
-        for ext in (".haptic", ".ahap"):
-            target = folder / f"out{ext}"
-            table.rows.append(
-                _row(
-                    f"that design export {ext}",
-                    haptic,
-                    lambda t=target: exporting.export_project(project, t),
-                    repeat,
-                )
-            )
+        table.rows += _export_rows(project, "that design", folder / "out", repeat)
         seconds = HAPTIC_SECONDS / 10 if quick else HAPTIC_SECONDS
         recording = drive_recording(seconds)
-        for ext in (".haptic", ".ahap"):
-            target = folder / f"recording{ext}"
-            exporting.export_project(recording, target)
-            table.rows.append(
-                _row(
-                    f"{seconds:g} s drive recording export {ext}",
-                    target,
-                    lambda t=target: exporting.export_project(recording, t),
-                    repeat,
-                )
-            )
+        table.rows += _export_rows(
+            recording, f"{seconds:g} s drive recording", folder / "recording", repeat
+        )
         emphasis = EMPHASIS // 10 if quick else EMPHASIS
         accented = place_design(
             edits.new_project(templates=False), accented_design(emphasis), name="accents"
         )
-        for ext in (".haptic", ".ahap"):
-            target = folder / f"accents{ext}"
-            exporting.export_project(accented, target)
-            table.rows.append(
-                _row(
-                    f"design of {emphasis:,} emphasis export {ext}",
-                    target,
-                    lambda t=target: exporting.export_project(accented, t),
-                    repeat,
-                )
-            )
+        table.rows += _export_rows(
+            accented, f"design of {emphasis:,} emphasis", folder / "accents", repeat
+        )
         table.rows.append(
             _row(
                 f"that AHAP ({emphasis:,} transients) import",
