@@ -83,7 +83,4 @@ def into_gap(project: Project, clip_ids: list[str], at: float) -> Project:
         shift = max(shift, (start if start is not None else first) - first)
     if shift <= EPS:
         return project
-    for clip_id in clip_ids:
-        _, clip = project.find_clip(clip_id)
-        project = edits.move_clip(project, clip_id, clip.start + shift)
-    return project
+    return edits.shift_clips(project, clip_ids, shift)
