@@ -17,14 +17,13 @@ import numpy as np
 from device.sim import KnobParams, KnobPhysics, observer
 from device.sim.estimator import acceleration_noise, acceleration_response, velocity_response
 from timeline.bench.report import Table, figure, save
-from timeline.devices import CoefficientBlock, Hand
+from timeline.devices import ESTIMATORS, CoefficientBlock, Hand
 
 NAME = "estimator"
 SUMMARY = "simulated knob: velocity/acceleration estimate gain and phase, mass torque noise"
 FREQUENCIES = (10.0, 50.0, 100.0, 175.0, 300.0, 500.0)
 MASS = 1e-5  # kg*m^2: one full scale of the mass track
 SPEEDS = (37.0, 90.0)  # deg/s: 3.7 and exactly 9 encoder counts per period
-ESTIMATORS = ("kalman", "filter", "tracking")
 
 
 def mass_noise(speed: float, seconds: float, estimator: str = "kalman") -> float:
