@@ -118,7 +118,8 @@ def main() -> None:
 
 def project_file_step(step: str, path: Path, project_path: Path) -> None:
     """Save (after importing the recording) or load the project file, measured alone."""
-    from timeline import edits, importing, projectfile
+    from timeline import edits
+    from timeline.files import importing, projectfile
 
     if step == "save":
         project, _ = importing.import_file(edits.new_project(), path)
@@ -135,7 +136,8 @@ def run(path: Path, repeat: int) -> None:
     base_rss = peak_rss()
     from PySide6.QtWidgets import QApplication
 
-    from timeline import edits, importing
+    from timeline import edits
+    from timeline.files import importing
     from timeline.gui.main_window import MainWindow
 
     app = QApplication.instance() or QApplication(sys.argv[:1])

@@ -2,7 +2,7 @@
 
     python benchmarks/sim_integrators.py [--quick] [--out DIR]
 
-Same as `haptic-timeline bench integrators sim-speed` (the measuring code is in timeline/bench/).
+Same as `haptic-timeline bench integrators sim-speed` (the measuring code is in device/sim/bench/).
 """
 
 import sys

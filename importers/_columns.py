@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from timeline.formats import FormatError, Imported, Placement
+from timeline.plugins.file_formats import FormatError, Imported, Placement
 from timeline.tiles import SampledTile, Tile
 
 AXIS_NAMES = ("time", "t", "time_s", "seconds", "angle", "theta", "position")

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from timeline.memory import require
-from timeline.samples import ContentKey, exact_in_float32
+from timeline.signal.memory import require
+from timeline.signal.samples import ContentKey, exact_in_float32
 
 # Subtypes whose samples are integers of at most 24 bits (or float32) scaled by a power of two:
 # every value read is a float32 exactly. The mean of two channels of the integer ones is too: a

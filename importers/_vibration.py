@@ -1,6 +1,6 @@
 """JSON plumbing shared by the vibration formats (.haptic, AHAP): bounded reads, checked numbers.
 
-What the formats mean is in timeline.vibration (designs as envelope data) and in each format's
+What the formats mean is in timeline.edits.vibration (designs as envelope data) and in each format's
 module; this holds only what both need to read and write their JSON safely.
 """
 
@@ -11,7 +11,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from timeline.formats import FormatError
+from timeline.plugins.file_formats import FormatError
 
 MAX_DURATION = 600.0  # s: longer designs are refused as hostile or broken
 MAX_JSON_BYTES = 64 * 2**20

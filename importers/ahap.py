@@ -1,7 +1,7 @@
 """Apple AHAP (Core Haptics JSON): transient and continuous events, parameter curves.
 
-Reading turns the pattern into one vibration design (timeline.vibration): the felt amplitude is
-intensity squared, where intensity = event intensity x Attack/Decay/Release envelope x
+Reading turns the pattern into one vibration design (timeline.edits.vibration): the felt
+amplitude is intensity squared, where intensity = event intensity x Attack/Decay/Release envelope x
 HapticIntensityControl (a multiplier, linear between curve points, stepped by dynamic
 parameters); sharpness = event sharpness + HapticSharpnessControl. Breakpoints sit at every
 event edge, envelope corner and control point; between them points are added (evenly in
@@ -33,16 +33,16 @@ import numpy as np
 
 from importers import _vibration as vib
 from importers._envelope_fit import roots_of_lines, squares_of_roots
-from timeline.formats import FormatError, Imported, Progress
-from timeline.model import Project
-from timeline.vibration import (
+from timeline.analysis.breakpoints import simplify
+from timeline.edits.vibration import (
     Emphasis,
     VibrationDesign,
     design_of,
     design_placements,
     sharpness_convention,
 )
-from timeline.vibration_analysis import simplify
+from timeline.model import Project
+from timeline.plugins.file_formats import FormatError, Imported, Progress
 
 MAX_CONTINUOUS = 30.0  # s: Core Haptics' longest continuous event
 MAX_CURVE_POINTS = 16  # Core Haptics' limit per parameter curve

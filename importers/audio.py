@@ -18,8 +18,8 @@ import numpy as np
 import soundfile as sf
 
 from importers._sample_store import SampleStore
-from timeline.formats import FormatError, Layers, Progress
-from timeline.samples import first_non_finite
+from timeline.plugins.file_formats import FormatError, Layers, Progress
+from timeline.signal.samples import first_non_finite
 from timeline.tiles import MAX_TILE_SAMPLES, SampledTile
 
 BLOCK_FRAMES = 1 << 16

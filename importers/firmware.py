@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from timeline.formats import FormatError, Layers
+from timeline.plugins.file_formats import FormatError, Layers
 
 UNITS = {
     "torque": "N*m",

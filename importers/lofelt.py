@@ -1,13 +1,14 @@
 """Meta Haptics Studio / Lofelt `.haptic` (v1 JSON): amplitude and frequency envelopes, emphasis.
 
-Reading keeps the file's breakpoints and emphasis as one vibration design (timeline.vibration), so
-an unedited import -> export writes the same numbers back. Validity follows Meta's validator: an
-amplitude envelope needs two breakpoints and a positive duration, values lie in 0..1, times never
-go back; what Meta only flags for files from older tools (an emphasis weaker than its breakpoint,
-frequency breakpoints past the amplitude envelope) is kept and reported as a note. Writing takes
-timeline.vibration.design_of of the sounding drive tracks: each emphasis on an amplitude
-breakpoint at its time (one is inserted when none is free there, so two emphases at one time
-both survive), raised to the envelope's level where it was weaker, as Meta's validator requires.
+Reading keeps the file's breakpoints and emphasis as one vibration design
+(timeline.edits.vibration), so an unedited import -> export writes the same numbers back. Validity
+follows Meta's validator: an amplitude envelope needs two breakpoints and a positive duration,
+values lie in 0..1, times never go back; what Meta only flags for files from older tools (an
+emphasis weaker than its breakpoint, frequency breakpoints past the amplitude envelope) is kept and
+reported as a note. Writing takes timeline.edits.vibration.design_of of the sounding drive tracks:
+each emphasis on an amplitude breakpoint at its time (one is inserted when none is free there, so
+two emphases at one time both survive), raised to the envelope's level where it was weaker, as
+Meta's validator requires.
 """
 
 from __future__ import annotations
@@ -19,10 +20,10 @@ from typing import Any
 import numpy as np
 
 from importers import _vibration as vib
-from timeline.formats import FormatError, Imported, Progress
+from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, design_placements
 from timeline.model import Project
-from timeline.vibration import Emphasis, VibrationDesign, design_of, design_placements
-from timeline.vibration_design import DEFAULT_FREQUENCY
+from timeline.plugins.file_formats import FormatError, Imported, Progress
+from timeline.signal.vibration_design import DEFAULT_FREQUENCY
 
 
 def _breakpoints(items: Any, key: str, where: str) -> list[dict[str, Any]]:

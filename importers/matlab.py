@@ -20,8 +20,8 @@ from importers._columns import (
     positive_rate,
     rate_from_axis,
 )
-from timeline import sandbox
-from timeline.formats import FormatError, Imported, Layers, Progress
+from timeline.files import crash_isolation
+from timeline.plugins.file_formats import FormatError, Imported, Layers, Progress
 from timeline.tiles import Tile
 
 PREFERRED = ("value", "data", "drive")
@@ -32,7 +32,7 @@ def _load(path: Path) -> dict[str, Any]:
     with path.open("rb") as f:
         if f.read(128)[:19] == b"MATLAB 7.3 MAT-file":
             raise FormatError(f"{path.name} is a Matlab v7.3 (HDF5) file: save it with -v7")
-    return sandbox.run(_parse, path, what=path.name)
+    return crash_isolation.run(_parse, path, what=path.name)
 
 
 def _parse(path: Path) -> dict[str, Any]:

@@ -22,12 +22,12 @@ from typing import Any
 import numpy as np
 import opentimelineio as otio
 
-from timeline import exporting, sandbox
 from timeline.errors import HapticTimelineError
-from timeline.formats import FormatError, Imported, Placement, Progress, TrackInfo
+from timeline.files import crash_isolation, exporting
 from timeline.model import Clip, Fade, Project, Track
+from timeline.plugins.file_formats import FormatError, Imported, Placement, Progress, TrackInfo
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
-from timeline.vibration_tile import VibrationTile
+from timeline.tiles.vibration_tile import VibrationTile
 
 KEY = "haptic_timeline"
 DEFAULT = "DEFAULT_MEDIA"  # OTIO's key for a clip's default media reference
@@ -218,7 +218,7 @@ class OtioFormat:
         The file is parsed in a child process: a damaged file can crash opentimelineio.
         """
         path = Path(path)
-        imported = sandbox.run(_read, path, what=path.name)
+        imported = crash_isolation.run(_read, path, what=path.name)
         if progress is not None:
             progress(1.0)
         return imported

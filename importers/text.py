@@ -21,7 +21,7 @@ from importers._columns import (
     positive_rate,
     rate_from_axis,
 )
-from timeline.formats import FormatError, Imported, Layers, Progress
+from timeline.plugins.file_formats import FormatError, Imported, Layers, Progress
 from timeline.tiles import Tile
 
 COMMENTS = ("#", "%", "//")

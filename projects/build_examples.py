@@ -9,7 +9,8 @@ import math
 import sys
 from pathlib import Path
 
-from timeline import edits, generator, markers, save, spline
+from timeline import edits, generator, save, spline
+from timeline.edits import markers
 from timeline.model import Project
 
 HERE = Path(__file__).resolve().parent

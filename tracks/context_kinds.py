@@ -1,6 +1,6 @@
 """Context track kinds: material to design against, never part of the haptic output."""
 
-from timeline.kinds import TrackKind
+from timeline.plugins.track_kinds import TrackKind
 
 AUDIO = TrackKind(
     id="audio",

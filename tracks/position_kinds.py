@@ -1,6 +1,6 @@
 """Track kinds used only on the position axis (Equation 1)."""
 
-from timeline.kinds import TrackKind
+from timeline.plugins.track_kinds import TrackKind
 
 TORQUE = TrackKind(
     id="torque",

@@ -2,7 +2,7 @@
 
 from math import pi
 
-from timeline.kinds import TrackKind
+from timeline.plugins.track_kinds import TrackKind
 
 DAMPING = TrackKind(
     id="damping",

@@ -1,6 +1,6 @@
 """Track kinds used only on the time axis (Equation 2)."""
 
-from timeline.kinds import TrackKind
+from timeline.plugins.track_kinds import TrackKind
 
 DRIVE = TrackKind(
     id="drive",

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from timeline.devices import (
+from timeline.plugins.device_protocol import (
     CoefficientBlock,
     Device,
     DeviceError,

@@ -7,7 +7,7 @@ from typing import Any
 
 from device.sim.params import KnobParams
 from device.sim.physics import KnobPhysics
-from timeline.devices import (
+from timeline.plugins.device_protocol import (
     CoefficientBlock,
     Device,
     DeviceInfo,

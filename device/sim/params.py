@@ -9,7 +9,7 @@ from functools import cached_property
 import numpy as np
 
 from device.sim.observer import NOISE, kalman_gains, tracking_gains
-from timeline.devices import ESTIMATORS, DeviceError, Dynamics
+from timeline.plugins.device_protocol import ESTIMATORS, DeviceError, Dynamics
 
 ENCODER_QUANTUM = math.radians(0.001)  # rad per count: 0.001 deg
 

@@ -23,7 +23,7 @@ from device.sim.params import KnobParams
 from device.sim.plant import step_matrix, system_matrix
 from device.sim.readings import blow_up_index, readings
 from device.sim.stability import stability_flags
-from timeline.devices import (
+from timeline.plugins.device_protocol import (
     CoefficientBlock,
     DeviceError,
     Hand,

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import expm
 
-from timeline.devices import DeviceError
+from timeline.plugins.device_protocol import DeviceError
 
 INTEGRATORS = ("zoh", "rk4", "semi-implicit", "euler")
 

@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from timeline.devices import Dynamics, StabilityFlag
 from timeline.limits import servo
+from timeline.plugins.device_protocol import Dynamics, StabilityFlag
 
 
 def passive_stiffness(device_damping: float, virtual_damping, period: float, delay: int = 0):

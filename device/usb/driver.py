@@ -14,7 +14,7 @@ from device.usb import protocol as p
 from device.usb.errors import UsbDeviceError
 from device.usb.link import Link, default_backend, find_devices
 from device.usb.streamer import Chunker, Stream
-from timeline.devices import (
+from timeline.plugins.device_protocol import (
     CoefficientBlock,
     Device,
     DeviceError,

@@ -20,7 +20,7 @@ import usb.util
 from device.usb import descriptors as desc
 from device.usb import protocol as p
 from device.usb.firmware import EmulatedKnob
-from timeline.devices import Hand
+from timeline.plugins.device_protocol import Hand
 
 _GET_DESCRIPTOR = 0x06
 _NO_DEVICE = ("No such device (it may have been disconnected)", -4, errno.ENODEV)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from timeline.devices import DeviceError
+from timeline.plugins.device_protocol import DeviceError
 
 
 class UsbDeviceError(DeviceError):

@@ -16,7 +16,7 @@ import numpy as np
 
 from device.sim import KnobParams, KnobPhysics
 from device.usb import protocol as p
-from timeline.devices import CoefficientBlock, Hand, Telemetry
+from timeline.plugins.device_protocol import CoefficientBlock, Hand, Telemetry
 
 FIRMWARE_VERSION = (1, 0, 0)
 

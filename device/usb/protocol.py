@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from timeline.devices import Dynamics
-from timeline.devices.dynamics import OBSERVERS
 from timeline.errors import HapticTimelineError
+from timeline.plugins.device_protocol import Dynamics
+from timeline.plugins.device_protocol.dynamics import OBSERVERS
 
 PROTOCOL_VERSION = 2  # 2: blocks and reports end in a CRC-32 of their bytes
 PROTOCOL_MINOR = 1  # 2.1: GET_INFO declares the estimator, sealed by a CRC-32 (2.0: 58 bytes)

@@ -15,7 +15,13 @@ from device.sim.stability import stability_flags
 from device.usb import protocol as p
 from device.usb.errors import DeviceFault, DeviceUnderrun, UsbDeviceError
 from device.usb.link import Link
-from timeline.devices import CoefficientBlock, LiveTelemetry, Monitor, Progress, Telemetry
+from timeline.plugins.device_protocol import (
+    CoefficientBlock,
+    LiveTelemetry,
+    Monitor,
+    Progress,
+    Telemetry,
+)
 
 
 class Chunker:

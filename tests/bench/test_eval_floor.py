@@ -6,9 +6,9 @@ import numpy as np
 
 from timeline import edits
 from timeline.bench.eval_floor import evaluation_work
-from timeline.clip_render import clip_sample_range, render_shape
 from timeline.model import Project
-from timeline.quality import preset
+from timeline.rendering.clip_render import clip_sample_range, render_shape
+from timeline.signal.render_presets import preset
 from timeline.tiles import SampledTile, Tile, generator
 
 

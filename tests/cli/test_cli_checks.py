@@ -4,8 +4,8 @@ import shutil
 
 import pytest
 
-from timeline import projectfile
 from timeline.cli import main as cli
+from timeline.files import projectfile
 
 EXAMPLE = "projects/notification_buzz.htl"
 

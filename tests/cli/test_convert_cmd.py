@@ -11,13 +11,13 @@ import pytest
 import soundfile as sf
 
 from tests.analysis.conftest import tone_bursts
-from timeline import projectfile
 from timeline.analysis import AnalysisSettings
 from timeline.analysis.source import analyse_file
 from timeline.cli.main import main
-from timeline.context import render_sound
-from timeline.convert import design_of_analysis, sound_to_project
-from timeline.vibration import design_of
+from timeline.edits.vibration import design_of
+from timeline.files import projectfile
+from timeline.files.convert import design_of_analysis, sound_to_project
+from timeline.rendering.source_sound import render_sound
 
 RATE = 44_100
 ONSETS = [0.1, 0.45, 0.8]
@@ -138,9 +138,9 @@ def test_two_hour_sound(tmp_path: Path, request, capsys) -> None:
 def test_a_project_refuses_a_sound_too_long_to_keep(
     tmp_path: Path, bursts: Path, monkeypatch, capsys
 ):
-    import timeline.convert
+    import timeline.files.convert
 
-    monkeypatch.setattr(timeline.convert, "MAX_SOUND_SECONDS", 1.0)
+    monkeypatch.setattr(timeline.files.convert, "MAX_SOUND_SECONDS", 1.0)
     out = tmp_path / "long.htl"
     assert main(["convert", str(bursts), "-o", str(out)]) == 1
     err = capsys.readouterr().err.strip()

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import soundfile as sf
 
-from timeline import projectfile
 from timeline.cli.main import main
+from timeline.files import projectfile
 
 
 @pytest.fixture

@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 import soundfile as sf
 
-from timeline import mixer, projectfile
 from timeline.cli.main import main
+from timeline.files import projectfile
+from timeline.rendering import mixer
 
 RNG = np.random.default_rng(11)
 

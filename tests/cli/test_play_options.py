@@ -7,8 +7,8 @@ import pytest
 
 from timeline.cli.main import main
 from timeline.cli.play_cmd import parse_option
-from timeline.devices import Telemetry
 from timeline.errors import HapticTimelineError
+from timeline.plugins.device_protocol import Telemetry
 
 PROJECTS = Path(__file__).resolve().parents[2] / "projects"
 

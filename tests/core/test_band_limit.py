@@ -5,10 +5,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from timeline import edits
-from timeline.band_limit import _HIGHEST, aliasing_notes, band_limited
 from timeline.cli import main as cli
-from timeline.mixer import render
-from timeline.projectfile import save
+from timeline.files.projectfile import save
+from timeline.rendering.aliasing import aliasing_notes
+from timeline.rendering.mixer import render
+from timeline.signal.band_limit import HIGHEST_FREQUENCY, band_limited
 from timeline.tiles import generator
 
 RATE = 10_000.0
@@ -100,7 +101,7 @@ def test_a_3khz_square_at_10khz_keeps_its_fundamental_and_folds_nothing_back():
 
 
 def test_a_square_fundamental_is_4_over_pi_of_its_amplitude():
-    from timeline.quality import preset
+    from timeline.signal.render_presets import preset
 
     tile = generator("square", 1.0, frequency=3000.0, amplitude=0.5)
     out = tile.render(0.0, 1.0 / RATE, 10_000, preset("exact"))
@@ -108,7 +109,7 @@ def test_a_square_fundamental_is_4_over_pi_of_its_amplitude():
 
 
 def test_a_low_square_still_looks_like_a_square():
-    from timeline.quality import preset
+    from timeline.signal.render_presets import preset
 
     tile = generator("square", 0.1, frequency=100.0)  # 49 harmonics below 5 kHz: band-limited
     out = tile.render(0.0, 1.0 / RATE, 1000, preset("exact"))
@@ -117,7 +118,7 @@ def test_a_low_square_still_looks_like_a_square():
 
 
 def test_band_limited_saw_and_triangle_match_their_harmonics():
-    from timeline.quality import preset
+    from timeline.signal.render_presets import preset
 
     for name, third in (("saw", -2 / (3 * np.pi)), ("triangle", 8 / (9 * np.pi**2))):
         out = generator(name, 1.0, frequency=1500.0).render(0.0, 1 / RATE, 10_000, preset("exact"))
@@ -129,9 +130,9 @@ def test_band_limited_saw_and_triangle_match_their_harmonics():
 
 
 def test_a_square_whose_alias_is_under_the_limit_is_sampled_exactly():
-    from timeline.band_limit import ALIAS_LIMIT
-    from timeline.harmonic_waves import aliased_fraction
-    from timeline.quality import preset
+    from timeline.signal.band_limit import ALIAS_LIMIT
+    from timeline.signal.harmonic_waves import aliased_fraction
+    from timeline.signal.render_presets import preset
 
     tile = generator("square", 1.0, frequency=5.0)  # 999 harmonics below 5 kHz
     assert aliased_fraction("square", dict(tile.params), 5000.0) < ALIAS_LIMIT
@@ -140,7 +141,7 @@ def test_a_square_whose_alias_is_under_the_limit_is_sampled_exactly():
 
 
 def test_a_decimating_preset_band_limits_at_its_coarser_grid():
-    from timeline.quality import QualityPreset
+    from timeline.signal.render_presets import QualityPreset
 
     coarse = QualityPreset("coarse", "linear", "linear", 4, "float64")  # 2.5 kHz evaluation
     sine = generator("sine", 0.1, frequency=3000.0)
@@ -186,7 +187,7 @@ def test_the_band_limit_skips_its_mask_only_where_nothing_reaches_nyquist(
     tile = generator(name, 2.0, **params)
     u = np.linspace(u0, u0 + span, 997)
     p = dict(tile.params)
-    top = np.broadcast_to(_HIGHEST[name](u, tile.duration, p), u.shape)
+    top = np.broadcast_to(HIGHEST_FREQUENCY[name](u, tile.duration, p), u.shape)
     reference = np.where(top < 2_500.0, tile.evaluate(u), 0.0)
     assert np.array_equal(
         band_limited(name, u, 2_500.0, tile.duration, p, tile.evaluate), reference

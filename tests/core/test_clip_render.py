@@ -6,9 +6,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from timeline import edits, render
-from timeline.clip_render import _apply_fades
-from timeline.fades import fade_envelope, fade_in_gain
 from timeline.model import Clip, Fade
+from timeline.rendering.clip_render import _apply_fades
+from timeline.signal.fades import fade_envelope, fade_in_gain
 from timeline.tiles import SampledTile, generator, spline
 
 from .helpers import one_clip

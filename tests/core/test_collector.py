@@ -5,9 +5,9 @@ import json
 
 import pytest
 
-from timeline import collector, importing
 from timeline.bench.formats import long_haptic
-from timeline.formats import FormatError
+from timeline.files import gc_pause, importing
+from timeline.plugins.file_formats import FormatError
 
 
 @pytest.fixture(params=[True, False], ids=["enabled", "disabled"])
@@ -33,7 +33,7 @@ def collections():
 
 
 def test_paused_restores_the_state_even_when_the_body_raises(collector_state):
-    with pytest.raises(ZeroDivisionError), collector.paused():
+    with pytest.raises(ZeroDivisionError), gc_pause.paused():
         assert not gc.isenabled()
         1 / 0  # noqa: B018
     assert gc.isenabled() is collector_state
@@ -52,7 +52,7 @@ def test_reading_a_design_runs_no_collection_and_restores_the_collector(
     assert len(collections) <= 1
     assert again.placements == first.placements and len(again.placements) > 1
     assert gc.isenabled() is collector_state
-    with collector.paused():
+    with gc_pause.paused():
         pass
     assert gc.isenabled() is collector_state
     bad = tmp_path / "b.ahap"

@@ -7,11 +7,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from timeline import edits, mixer
-from timeline.context import add_sound, has_sound, render_sound
+from timeline import edits
+from timeline.edits.sound_track import add_sound
 from timeline.errors import EditError
-from timeline.exporting import export_project_file
-from timeline.projectfile import load, save
+from timeline.files.exporting import export_project_file
+from timeline.files.projectfile import load, save
+from timeline.rendering import mixer
+from timeline.rendering.source_sound import has_sound, render_sound
 from timeline.tiles import generator
 
 RATE = 8000.0

@@ -6,9 +6,10 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from timeline import edits, projectfile
+from timeline import edits
+from timeline.edits.history import History
 from timeline.errors import EditError
-from timeline.history import History
+from timeline.files import projectfile
 from timeline.tiles import SampledTile, generator
 
 finite = st.floats(min_value=-10, max_value=10, allow_nan=False)

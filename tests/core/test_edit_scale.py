@@ -11,8 +11,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from timeline import edits, projectfile
+from timeline import edits
 from timeline.errors import EditError
+from timeline.files import projectfile
 from timeline.tiles import generator
 
 from .test_edit_properties import OPS, apply, base_project
@@ -60,7 +61,8 @@ def test_inserting_at_equal_starts_orders_by_id():
 
 
 SAVE = """
-from timeline import edits, projectfile
+from timeline import edits
+from timeline.files import projectfile
 from timeline.tiles import generator
 p = edits.new_project(templates=True)
 for f in range(30):

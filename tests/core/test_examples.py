@@ -5,7 +5,8 @@ from pathlib import Path
 
 import pytest
 
-from timeline import projectfile, render
+from timeline import render
+from timeline.files import projectfile
 
 PROJECTS = Path(__file__).resolve().parents[2] / "projects"
 spec = importlib.util.spec_from_file_location("build_examples", PROJECTS / "build_examples.py")

@@ -5,9 +5,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from timeline.band_limit import band_limited
-from timeline.generators import GENERATORS
-from timeline.quality import preset
+from timeline.signal.band_limit import band_limited
+from timeline.signal.generators import GENERATORS
+from timeline.signal.render_presets import preset
 from timeline.tiles import generator, spline
 
 NORMAL = preset("normal")

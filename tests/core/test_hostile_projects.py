@@ -4,9 +4,10 @@ import json
 
 import pytest
 
-from timeline import memory, projectfile
 from timeline.cli import main as cli
 from timeline.errors import ProjectFileError
+from timeline.files import projectfile
+from timeline.signal import memory
 
 EXAMPLE = "projects/notification_buzz.htl"
 OVERFLOW = "@1e999@"  # written as the bare literal 1e999, which JSON readers take as inf

@@ -8,9 +8,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from timeline import edits, projectfile
-from timeline.id_sequence import IdSequence
+from timeline import edits
+from timeline.files import projectfile
 from timeline.model import PaletteTab
+from timeline.model.id_sequence import IdSequence
 from timeline.tiles import generator
 
 ids = st.lists(st.sampled_from(["tile1", "tile2", "tile10", "a", ""]), max_size=12)

@@ -9,9 +9,11 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from timeline import edits, markers, projectfile
+from timeline import edits
+from timeline.edits import markers
 from timeline.errors import EditError, ProjectFileError
-from timeline.markers import LoopRegion, Marker
+from timeline.files import projectfile
+from timeline.model.markers import LoopRegion, Marker
 
 
 def test_markers_stay_sorted_and_get_free_names():

@@ -11,9 +11,10 @@ import pytest
 import soundfile as sf
 
 from importers import audio
-from timeline import edits, media, projectfile
+from timeline import edits
 from timeline.errors import ProjectFileError
-from timeline.project_fields import FieldError
+from timeline.files import media, projectfile
+from timeline.files.project_fields import FieldError
 from timeline.tiles import SampledTile
 
 

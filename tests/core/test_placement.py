@@ -7,7 +7,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from timeline import edits
-from timeline.placement import free_start, overlaps
+from timeline.edits.placement import free_start, overlaps
 from timeline.tiles import generator
 
 

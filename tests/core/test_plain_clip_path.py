@@ -9,9 +9,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from timeline import projectfile
+from timeline.files import projectfile
+from timeline.files.project_fields import FieldError
 from timeline.model import Clip, Fade
-from timeline.project_fields import FieldError
 
 PLAIN = {
     "id": "clip7", "tile": "tile3", "start": 1.25, "source_in": 0.0, "source_out": 0.5,

@@ -8,8 +8,9 @@ import zlib
 import numpy as np
 import pytest
 
-from timeline import edits, projectfile
+from timeline import edits
 from timeline.errors import ProjectFileError
+from timeline.files import projectfile
 from timeline.tiles import SampledTile, spline
 
 from .helpers import one_clip

@@ -5,11 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from timeline import edits, resample
+from timeline import edits
 from timeline.bench.scenes import _tones
-from timeline.mixer import Mixer
 from timeline.model import Project
-from timeline.quality import preset
+from timeline.rendering.mixer import Mixer
+from timeline.signal import resample
+from timeline.signal.render_presets import preset
 from timeline.tiles import SampledTile
 
 FULL = 0.18  # drive full scale, N*m

@@ -10,10 +10,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from timeline import harmonic_waves, mixer
 from timeline.bench.scenes import LargeSpec, large_project
-from timeline.harmonic_waves import _fourier_real, harmonics_below, synthesise
-from timeline.render_kernels import fourier_real, scaled_add
+from timeline.rendering import mixer
+from timeline.signal import harmonic_waves
+from timeline.signal.harmonic_waves import _fourier_real, harmonics_below, synthesise
+from timeline.signal.render_kernels import fourier_real, scaled_add
 
 ANY_FLOAT = st.floats(allow_nan=False, allow_infinity=False, width=64)
 
@@ -68,7 +69,7 @@ def test_the_fourier_sum_is_the_wave_it_synthesises(name, duty, compiled, monkey
     series summed term by term, to 1e-12 of the amplitude."""
     monkeypatch.setattr(harmonic_waves, "COMPILED_WORK", 0 if compiled else 10**12)
     if not compiled:  # as in a process that has not loaded numba
-        monkeypatch.delitem(sys.modules, "timeline.render_kernels", raising=False)
+        monkeypatch.delitem(sys.modules, "timeline.signal.render_kernels", raising=False)
     params = {"frequency": 30.0, "phase": 0.3, "amplitude": 0.8, "duty": duty}
     u = np.arange(2_000) / 10_000.0
     keep = harmonics_below(30.0, 5_000.0)

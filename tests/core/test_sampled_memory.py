@@ -10,8 +10,8 @@ import pytest
 import soundfile as sf
 
 from importers.audio import AudioFormat
-from timeline import samples
 from timeline.errors import EditError
+from timeline.signal import samples
 from timeline.tiles import SampledTile
 
 

@@ -6,9 +6,9 @@ import os
 import numpy as np
 import pytest
 
-from timeline import sandbox
 from timeline.errors import HapticTimelineError
-from timeline.formats import FormatError
+from timeline.files import crash_isolation
+from timeline.plugins.file_formats import FormatError
 
 
 def crash() -> None:
@@ -32,13 +32,13 @@ def pid_and_square(x: float) -> tuple[int, float]:
 
 
 def test_a_result_comes_back_from_another_process():
-    pid, value = sandbox.run(pid_and_square, 3.0, what="x.mat")
+    pid, value = crash_isolation.run(pid_and_square, 3.0, what="x.mat")
     assert value == 9.0 and pid != os.getpid()
 
 
 def test_a_segfault_in_the_parser_is_one_sentence():
     with pytest.raises(HapticTimelineError) as info:
-        sandbox.run(crash, what="broken.mat")
+        crash_isolation.run(crash, what="broken.mat")
     assert str(info.value) == (
         "broken.mat could not be read: its parser crashed (SIGSEGV); the file is damaged or not "
         "what its name says"
@@ -50,16 +50,16 @@ def test_the_memory_limit_holds():
         HapticTimelineError,
         match=r"huge.mat could not be read: its parser needed more than 1.0 GiB",
     ):
-        sandbox.run(hog, what="huge.mat", memory_bytes=2**30)
+        crash_isolation.run(hog, what="huge.mat", memory_bytes=2**30)
 
 
 def test_a_format_error_passes_through_as_it_was():
     with pytest.raises(FormatError, match="^x.mat holds no numeric vector to import$"):
-        sandbox.run(refuse, what="x.mat")
+        crash_isolation.run(refuse, what="x.mat")
 
 
 def test_an_unexpected_exception_is_named():
     with pytest.raises(
         HapticTimelineError, match=r"^odd.otio could not be read: KeyError: 'header'$"
     ):
-        sandbox.run(surprise, what="odd.otio")
+        crash_isolation.run(surprise, what="odd.otio")

@@ -7,8 +7,9 @@ import threading
 import numpy as np
 
 from timeline import edits
-from timeline.context import add_sound, render_sound
-from timeline.sound_out import SoundOut
+from timeline.edits.sound_track import add_sound
+from timeline.rendering.sound_out import SoundOut
+from timeline.rendering.source_sound import render_sound
 
 RATE = 8000.0
 

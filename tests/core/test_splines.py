@@ -7,7 +7,7 @@ from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from scipy.interpolate import CubicSpline, PchipInterpolator
 
-from timeline.splines import SAMPLES_PER_PIECE, natural_cubic, pchip
+from timeline.signal.splines import SAMPLES_PER_PIECE, natural_cubic, pchip
 from timeline.tiles import spline
 
 TOLERANCE = 1e-11  # of the curve's magnitude: its value range, its largest value, at least 1
@@ -65,7 +65,7 @@ def test_a_spline_tile_evaluates_through_its_points_without_scipy_objects():
     tile = spline([(0.0, 0.0), (0.3, 1.0), (0.7, -0.5), (1.0, 0.0)], 1.2, "natural")
     values = tile.evaluate(np.array([0.0, 0.3, 0.7, 1.0, 1.1, 1.3, -0.1]))
     np.testing.assert_allclose(values, [0.0, 1.0, -0.5, 0.0, 0.0, 0.0, 0.0], atol=1e-15)
-    assert type(tile._curve).__module__ == "timeline.splines"
+    assert type(tile._curve).__module__ == "timeline.signal.splines"
 
 
 @settings(max_examples=60, deadline=None)

@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from timeline import edits, render, tile_edits
+from timeline import edits, render
+from timeline.edits import tile_shape
 from timeline.errors import EditError
 from timeline.tiles import SampledTile, generator, spline
 
@@ -13,20 +14,20 @@ from .helpers import one_clip
 def test_moving_a_spline_point_changes_the_render_at_that_time():
     p, clip = one_clip(spline([(0, 0), (0.5, 1), (1, 0)], 1.0, "pchip"))
     tile_id = p.find_clip(clip)[1].tile_id
-    p2 = tile_edits.move_point(p, tile_id, 1, 0.5, -0.5)
+    p2 = tile_shape.move_point(p, tile_id, 1, 0.5, -0.5)
     assert render(p2)["drive"][5000] == pytest.approx(-0.5 * 0.18)
-    p3, index = tile_edits.add_point(p2, tile_id, 0.25, 2.0)
+    p3, index = tile_shape.add_point(p2, tile_id, 0.25, 2.0)
     assert index == 1 and render(p3)["drive"][2500] == pytest.approx(2.0 * 0.18)
-    p4 = tile_edits.remove_point(p3, tile_id, index)
+    p4 = tile_shape.remove_point(p3, tile_id, index)
     assert p4.tile(tile_id) == p2.tile(tile_id)
     with pytest.raises(EditError, match="already a point"):
-        tile_edits.add_point(p2, tile_id, 0.5, 1.0)
+        tile_shape.add_point(p2, tile_id, 0.5, 1.0)
 
 
 def test_a_point_is_kept_between_its_neighbours():
     p, clip = one_clip(spline([(0, 0), (0.5, 1), (1, 0)], 1.0))
     tile_id = p.find_clip(clip)[1].tile_id
-    moved = tile_edits.move_point(p, tile_id, 1, 5.0, 1.0).tile(tile_id)
+    moved = tile_shape.move_point(p, tile_id, 1, 5.0, 1.0).tile(tile_id)
     assert moved.points[1][0] == pytest.approx(1.0 - 1e-6)
 
 
@@ -42,13 +43,13 @@ def test_replace_tile_refuses_a_shape_shorter_than_its_clips():
 def test_range_to_palette_and_editable_copy():
     p, clip = one_clip(generator("ramp", 1.0, start=0.0, end=1.0))
     tile_id = p.find_clip(clip)[1].tile_id
-    p2, part = tile_edits.range_to_palette(p, tile_id, 0.25, 0.5)
+    p2, part = tile_shape.range_to_palette(p, tile_id, 0.25, 0.5)
     tile = p2.tile(part)
     assert part in p2.tab("Scratch").tile_ids and tile.duration == pytest.approx(0.25)
     assert tile.data[0] == pytest.approx(0.25) and tile.data[-1] == pytest.approx(0.4999)
-    p3, copy = tile_edits.editable_copy(p, tile_id)
+    p3, copy = tile_shape.editable_copy(p, tile_id)
     points = p3.tile(copy).points
-    assert len(points) == tile_edits.EDITABLE_POINTS
+    assert len(points) == tile_shape.EDITABLE_POINTS
     assert points[-1] == pytest.approx((1.0, 1.0))
 
 

@@ -6,7 +6,8 @@ import math
 
 import pytest
 
-from timeline import edits, tile_params
+from timeline import edits
+from timeline.edits import tile_params
 from timeline.errors import EditError
 from timeline.tiles import generator, spline
 

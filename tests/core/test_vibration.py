@@ -7,11 +7,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from timeline import edits, mixer, projectfile, tile_edits, tile_params
-from timeline.errors import EditError, ProjectFileError
-from timeline.kinds import track_kind
-from timeline.tiles import generator
-from timeline.vibration import (
+from timeline import edits
+from timeline.edits import tile_params, tile_shape
+from timeline.edits.vibration import (
     EDIT_TOLERANCE,
     Emphasis,
     VibrationDesign,
@@ -19,7 +17,12 @@ from timeline.vibration import (
     design_of,
     place_design,
 )
-from timeline.vibration_design import F_MAX, F_MIN, carrier_hz
+from timeline.errors import EditError, ProjectFileError
+from timeline.files import projectfile
+from timeline.plugins.track_kinds import track_kind
+from timeline.rendering import mixer
+from timeline.signal.vibration_design import F_MAX, F_MIN, carrier_hz
+from timeline.tiles import generator
 
 RATE = 10_000.0
 DESIGN = VibrationDesign(
@@ -145,14 +148,14 @@ def test_an_emphasis_tile_s_parameters_are_its_emphasis_and_set_its_length():
 def test_amplitude_breakpoints_are_edited_as_points_and_read_back_exactly():
     p = _project()
     tile = p.tracks[0].clips[0].tile_id
-    p = tile_edits.move_point(p, tile, 3, 0.7, 1.7)  # (0.6, 0.4) -> (0.7, 1.0): clamped to 1
-    p = tile_edits.move_point(p, tile, 1, 0.5, 0.9)  # one side of the step at 0.2 s stays on it
-    p, k = tile_edits.add_point(p, tile, 0.9, 0.25)
-    p = tile_edits.remove_point(p, tile, 0)
+    p = tile_shape.move_point(p, tile, 3, 0.7, 1.7)  # (0.6, 0.4) -> (0.7, 1.0): clamped to 1
+    p = tile_shape.move_point(p, tile, 1, 0.5, 0.9)  # one side of the step at 0.2 s stays on it
+    p, k = tile_shape.add_point(p, tile, 0.9, 0.25)
+    p = tile_shape.remove_point(p, tile, 0)
     assert k == 4
     assert design_of(p).amplitude == ((0.2, 0.9), (0.2, 0.4), (0.7, 1.0), (0.9, 0.25), (1.0, 0.0))
     with pytest.raises(EditError, match="inside the tile"):
-        tile_edits.add_point(p, tile, 1.5, 0.5)
+        tile_shape.add_point(p, tile, 1.5, 0.5)
 
 
 def test_a_fade_is_reduced_to_breakpoints_within_the_stated_bound():
@@ -306,22 +309,22 @@ def test_frequency_breakpoints_are_edited_as_points_and_the_rendered_carrier_fol
     tile = p.tracks[0].clips[0].tile_id
     window = slice(int(0.3 * RATE), int(0.45 * RATE))  # amplitude 0.4 there, no emphasis
     assert _crossings(_drive(p)[window]) == pytest.approx(2 * 140.0 * 0.15, abs=2)  # 0.34..0.46
-    p, k = tile_edits.add_point(p, tile, 0.5, 0.0, tile_edits.FREQUENCY)
-    p = tile_edits.move_point(p, tile, k, 0.5, 1.7, tile_edits.FREQUENCY)  # clamped to 1
+    p, k = tile_shape.add_point(p, tile, 0.5, 0.0, tile_shape.FREQUENCY)
+    p = tile_shape.move_point(p, tile, k, 0.5, 1.7, tile_shape.FREQUENCY)  # clamped to 1
     assert design_of(p).frequency == ((0.0, 0.1), (0.5, 1.0), (1.0, 0.9))
     assert design_of(p).amplitude == DESIGN.amplitude  # the other envelope is untouched
     hz = float(np.mean(carrier_hz(0.1 + 0.9 * np.linspace(0.3, 0.45, 1001) / 0.5)))
     assert _crossings(_drive(p)[window]) == pytest.approx(2 * hz * 0.15, abs=2)  # 176..216 Hz
-    p = tile_edits.remove_point(p, tile, 0, tile_edits.FREQUENCY)
+    p = tile_shape.remove_point(p, tile, 0, tile_shape.FREQUENCY)
     assert design_of(p).frequency == ((0.5, 1.0), (1.0, 0.9))
     with pytest.raises(EditError, match="no 'loudness' envelope"):
-        tile_edits.move_point(p, tile, 0, 0.5, 0.5, "loudness")
+        tile_shape.move_point(p, tile, 0, 0.5, 0.5, "loudness")
     with pytest.raises(EditError, match="finite"):
-        tile_edits.add_point(p, tile, 0.7, float("nan"), tile_edits.FREQUENCY)
+        tile_shape.add_point(p, tile, 0.7, float("nan"), tile_shape.FREQUENCY)
 
 
 def test_a_design_clip_s_emphasis_are_those_on_the_emphasis_track_within_its_span():
-    from timeline.vibration import emphasis_of, with_emphasis
+    from timeline.edits.vibration import emphasis_of, with_emphasis
 
     p = _project(at=1.0)  # the design over 1..2 s, its emphasis (both at 1.5 s) below
     design, accents = p.tracks[0].clips[0].id, [c.id for c in p.tracks[1].clips]
@@ -341,7 +344,7 @@ point_edits = st.lists(
         st.integers(-1, 6),
         st.floats(-0.5, 1.5) | st.sampled_from([float("nan"), float("inf")]),
         st.floats(-2.0, 2.0) | st.sampled_from([float("nan"), -float("inf")]),
-        st.sampled_from(tile_edits.LANES),
+        st.sampled_from(tile_shape.LANES),
     ),
     max_size=12,
 )
@@ -356,11 +359,11 @@ def test_any_run_of_point_edits_leaves_a_valid_design_or_says_why(steps):
         before = p.tile(tile).design
         try:
             if op == "move":
-                p = tile_edits.move_point(p, tile, index, t, v, lane)
+                p = tile_shape.move_point(p, tile, index, t, v, lane)
             elif op == "add":
-                p, _ = tile_edits.add_point(p, tile, t, v, lane)
+                p, _ = tile_shape.add_point(p, tile, t, v, lane)
             else:
-                p = tile_edits.remove_point(p, tile, index, lane)
+                p = tile_shape.remove_point(p, tile, index, lane)
         except EditError as exc:
             assert str(exc) and p.tile(tile).design == before  # one sentence, nothing lost
             continue

@@ -6,10 +6,10 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from timeline import edits
+from timeline.analysis.breakpoints import AMPLITUDE_TOLERANCE, window_medians
+from timeline.edits.vibration import design_of
+from timeline.signal.vibration_design import carrier_hz
 from timeline.tiles import SampledTile
-from timeline.vibration import design_of
-from timeline.vibration_analysis import AMPLITUDE_TOLERANCE, window_medians
-from timeline.vibration_design import carrier_hz
 
 finite = st.floats(-1e6, 1e6, allow_nan=False)
 

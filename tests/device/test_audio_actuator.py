@@ -18,14 +18,14 @@ import soxr
 
 from device.audio import AudioActuator
 from device.audio import actuator as audio
-from timeline.devices import DeviceError
+from timeline.plugins.device_protocol import DeviceError
 
 NO_PORTAUDIO = 3
 PLAYER = """
 import json, sys
 import numpy as np
 from device.audio import AudioActuator
-from timeline.devices import CoefficientBlock, DeviceError
+from timeline.plugins.device_protocol import CoefficientBlock, DeviceError
 options, drive = json.loads(sys.argv[1]), np.array(json.loads(sys.argv[2]), dtype=float)
 try:
     actuator = AudioActuator("haptic", **options)

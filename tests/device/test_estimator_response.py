@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from device.sim import KnobParams, KnobPhysics, observer
+from device.sim.bench.estimator import mass_noise
 from device.sim.estimator import acceleration_response, velocity_response
-from timeline.bench.estimator import mass_noise
-from timeline.devices import CoefficientBlock, DeviceError, Hand
+from timeline.plugins.device_protocol import CoefficientBlock, DeviceError, Hand
 
 
 def test_the_filter_at_175_hz_is_three_quarters_and_47_degrees_late() -> None:

@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from device.sim import KnobParams, KnobPhysics
-from timeline.devices import HAND_MODELS, CoefficientBlock, Hand, HandSpecError
+from timeline.plugins.device_protocol import HAND_MODELS, CoefficientBlock, Hand, HandSpecError
 
 IDEAL = dict(quantum=0.0, coulomb=0.0, velocity_cutoff=0.0)  # the textbook sampled knob
 

@@ -3,7 +3,7 @@
 import numpy as np
 
 from device.sim import SimKnob
-from timeline.devices import Hand, PositionProgram, PositionTable
+from timeline.plugins.device_protocol import Hand, PositionProgram, PositionTable
 
 
 def constant(torque: float) -> PositionTable:

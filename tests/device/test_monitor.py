@@ -5,7 +5,7 @@ import pytest
 
 from device.sim import SimKnob
 from device.usb import UsbKnob
-from timeline.devices import CoefficientBlock, Hand
+from timeline.plugins.device_protocol import CoefficientBlock, Hand
 
 
 def blocks(n_blocks=5, n=200):

@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 
 from device.sim import SimKnob
-from timeline import edits, projectfile
-from timeline.devices import Hand
-from timeline.playback import coefficient_blocks, position_program, rest_angles
+from timeline import edits
+from timeline.files import projectfile
+from timeline.plugins.device_protocol import Hand
+from timeline.rendering.playback import coefficient_blocks, position_program, rest_angles
 from timeline.tiles import generator
 
 # The walls reach 0.8 x 180 mNm over their 20 degrees: the example keeps them below the

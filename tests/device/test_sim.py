@@ -8,7 +8,13 @@ import numpy as np
 import pytest
 
 from device.sim import KnobParams, KnobPhysics, SimKnob
-from timeline.devices import CoefficientBlock, DeviceError, Hand, PositionTable, open_device
+from timeline.plugins.device_protocol import (
+    CoefficientBlock,
+    DeviceError,
+    Hand,
+    PositionTable,
+    open_device,
+)
 
 IDEAL = dict(quantum=0.0, coulomb=0.0, velocity_cutoff=0.0)  # the textbook sampled knob
 

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from device.sim import KnobParams, KnobPhysics, stability_flags
-from timeline.devices import CoefficientBlock, Dynamics, Hand
 from timeline.limits import servo
+from timeline.plugins.device_protocol import CoefficientBlock, Dynamics, Hand
 
 LINEAR = dict(quantum=0.0, coulomb=0.0)
 
@@ -152,8 +152,8 @@ def test_with_an_observer_the_limits_follow_it(estimator: str, layer: str, fract
 
 def test_a_declared_slew_limit_is_obeyed_and_checked() -> None:
     from timeline import edits, generator
-    from timeline.devices import open_device
     from timeline.limits.check import check
+    from timeline.plugins.device_protocol import open_device
 
     p = KnobParams(**LINEAR, slew=100.0)  # N*m/s: 10 mNm per period at 10 kHz
     knob = KnobPhysics(p)

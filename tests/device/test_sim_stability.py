@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from device.sim import KnobParams, KnobPhysics, passive_stiffness, stability_flags, stable_stiffness
-from timeline.devices import CoefficientBlock, Hand
+from timeline.plugins.device_protocol import CoefficientBlock, Hand
 
 TEXTBOOK = dict(quantum=0.0, coulomb=0.0, velocity_cutoff=0.0)
 

@@ -12,10 +12,10 @@ import pytest
 from device.usb import UsbKnob
 from device.usb.emulated import EmulatedBackend, EmulatedDevice
 from tests.limits.designs import layered
-from timeline.devices import CoefficientBlock, Hand
+from timeline.files.projectfile import load
 from timeline.limits import servo
 from timeline.limits.check import check
-from timeline.projectfile import load
+from timeline.plugins.device_protocol import CoefficientBlock, Hand
 
 PROJECTS = Path(__file__).resolve().parents[2] / "projects"
 JUST = 1e-6  # relative step either side of a limit

@@ -19,10 +19,10 @@ from device.usb import protocol as p
 from device.usb.emulated import EmulatedBackend, EmulatedDevice
 from device.usb.firmware import EmulatedKnob
 from tests.limits.designs import layered
-from timeline.devices import CoefficientBlock, DeviceError, Hand
 from timeline.limits import servo
 from timeline.limits.check import check
 from timeline.limits.rendered import knob as rendered_knob
+from timeline.plugins.device_protocol import CoefficientBlock, DeviceError, Hand
 
 INFO = p.InfoPayload(p.KIND_KINESTHETIC, 10_000, 0.18, 100.0, 1.0, 1e-2, 1e-5, 4096, 512, 100,
                      p.ALL_CHANNELS, 50, 10, 1e-5, 1e-4, 1e-3, 1, (1, 1, 0),

@@ -29,7 +29,8 @@ from device.usb.errors import (
     UsbDeviceError,
 )
 from device.usb.firmware import EmulatedKnob
-from timeline.devices import (
+from timeline.files.projectfile import load
+from timeline.plugins.device_protocol import (
     CoefficientBlock,
     DeviceError,
     Hand,
@@ -37,8 +38,7 @@ from timeline.devices import (
     PositionTable,
     Telemetry,
 )
-from timeline.playback import prepare
-from timeline.projectfile import load
+from timeline.rendering.playback import prepare
 
 PROJECTS = Path(__file__).resolve().parents[2] / "projects"
 RATE = 10_000

@@ -9,7 +9,8 @@ import pytest
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtTest import QTest
 
-from timeline import edits, projectfile
+from timeline import edits
+from timeline.files import projectfile
 
 from .helpers import click, clip_point, drag
 

@@ -10,7 +10,8 @@ from PySide6.QtGui import QGuiApplication
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QMessageBox
 
-from timeline import clipboard, edits, projectfile
+from timeline import edits
+from timeline.files import clipboard, projectfile
 from timeline.tiles import generator
 
 from .helpers import click, clip_point, drag, view_point

@@ -10,8 +10,9 @@ import pytest
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtTest import QTest
 
-from timeline import edits, vibration
-from timeline.vibration import Emphasis, VibrationDesign, place_design
+from timeline import edits
+from timeline.edits import vibration
+from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
 
 from .helpers import choose, click, clip_point, drag
 

@@ -13,7 +13,8 @@ from PySide6.QtCore import QMimeData, QPoint, QPointF, QSettings, Qt, QUrl
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QFileDialog
 
-from timeline import edits, exporting, projectfile
+from timeline import edits
+from timeline.files import exporting, projectfile
 from timeline.tiles import SampledTile
 
 from .conftest import two_track_project

@@ -62,8 +62,8 @@ def test_ruler_click_moves_the_playhead_and_its_readout(window):
 
 @pytest.mark.parametrize("axis", ["time", "position"])
 def test_a_new_project_lists_each_template_once(window, tmp_path, axis):
-    from timeline import projectfile
-    from timeline.templates import template_tiles
+    from timeline.files import projectfile
+    from timeline.tiles.templates import template_tiles
 
     win = window
     if axis == "time":

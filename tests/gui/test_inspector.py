@@ -8,7 +8,7 @@ from PySide6.QtCore import QPoint, Qt
 from PySide6.QtTest import QTest
 
 from timeline import render
-from timeline.kinds import track_kind
+from timeline.plugins.track_kinds import track_kind
 
 from .helpers import click, clip_point
 

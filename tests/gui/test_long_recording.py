@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 import soundfile as sf
 
-from timeline import edits, importing
+from timeline import edits
+from timeline.files import importing
 from timeline.gui.clip_shape import clip_columns
 from timeline.tiles import SampledTile
 

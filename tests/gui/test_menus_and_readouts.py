@@ -94,7 +94,7 @@ def test_lanes_and_the_waveform_editor_have_scales_in_the_tracks_units(window):
 
 
 def stiffness_unit() -> str:
-    from timeline.kinds import track_kind
+    from timeline.plugins.track_kinds import track_kind
 
     return track_kind("stiffness").display_unit
 

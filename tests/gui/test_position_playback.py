@@ -11,8 +11,8 @@ from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QMessageBox
 
-from timeline import playback
-from timeline.devices import HAND_MODELS, HAND_MODES, Hand
+from timeline.plugins.device_protocol import HAND_MODELS, HAND_MODES, Hand
+from timeline.rendering import playback
 
 ROOT = Path(__file__).resolve().parents[2]
 

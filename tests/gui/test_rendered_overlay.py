@@ -138,12 +138,12 @@ def test_an_lra_on_the_knob_is_a_second_curve_showing_what_it_cannot_play(qapp) 
     from dataclasses import replace
 
     from tests.gui.conftest import two_track_project
-    from timeline.devices import Hand, open_device
     from timeline.gui.geometry import Geometry
     from timeline.gui.rendered_overlay import curves as draw
     from timeline.gui.rendered_overlay import peaks_of
     from timeline.limits.actuators import actuator
     from timeline.limits.plot import traces
+    from timeline.plugins.device_protocol import Hand, open_device
 
     project, _ids = two_track_project()
     with open_device("sim") as sim:

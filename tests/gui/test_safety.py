@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 import soundfile
 
-from timeline import projectfile
+from timeline.files import projectfile
 from timeline.gui import autosave
 
 CHILD = textwrap.dedent(

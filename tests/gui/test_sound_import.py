@@ -16,9 +16,9 @@ from PySide6.QtWidgets import QApplication, QFileDialog
 from tests.analysis.conftest import tone_bursts
 from timeline.analysis import AnalysisSettings
 from timeline.analysis.source import analyse_file
-from timeline.context import render_sound
-from timeline.convert import design_of_analysis
-from timeline.vibration import VibrationTile
+from timeline.edits.vibration import VibrationTile
+from timeline.files.convert import design_of_analysis
+from timeline.rendering.source_sound import render_sound
 
 from .helpers import view_point
 

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from importers import _vibration as vib
 from importers import ahap
-from timeline.formats import FormatError
+from timeline.plugins.file_formats import FormatError
 
 LIMIT = 12  # the entry limit, lowered so a property can cross it cheaply
 

@@ -9,9 +9,10 @@ import pytest
 import soundfile as sf
 
 from importers import audio
-from timeline import exporting, importing, mixer
 from timeline.edits import new_project
-from timeline.formats import FormatError
+from timeline.files import exporting, importing
+from timeline.plugins.file_formats import FormatError
+from timeline.rendering import mixer
 
 RNG = np.random.default_rng(7)
 SCIPY_DATA = Path(np.__file__).parents[1] / "scipy" / "io" / "tests" / "data"
@@ -171,7 +172,7 @@ def test_wav_export_at_a_chosen_rate_and_subtype_imports_back(tmp_path, subtype)
 
 def test_export_picks_a_subtype_each_container_can_hold(tmp_path):
     from timeline import edits
-    from timeline.exporting import export_project
+    from timeline.files.exporting import export_project
     from timeline.tiles import generator
 
     p = edits.new_project(templates=False)
@@ -188,7 +189,7 @@ def test_export_picks_a_subtype_each_container_can_hold(tmp_path):
 
 def test_place_on_a_chosen_track_uses_that_tracks_kind(tmp_path):
     from timeline import edits, render
-    from timeline.importing import import_file, place, read_file
+    from timeline.files.importing import import_file, place, read_file
 
     path = tmp_path / "tone.wav"
     sf.write(str(path), np.full(100, 0.5), 10_000, subtype="DOUBLE")

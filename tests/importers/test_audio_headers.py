@@ -7,7 +7,7 @@ import pytest
 import soundfile as sf
 
 from importers.audio import FORMAT
-from timeline.formats import FormatError
+from timeline.plugins.file_formats import FormatError
 
 TONE = np.sin(np.arange(1000) / 10) * 0.5
 

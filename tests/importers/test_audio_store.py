@@ -14,10 +14,11 @@ import soundfile as sf
 
 from importers import audio
 from importers._sample_store import known_exact
-from timeline import edits, mixer
-from timeline.formats import FormatError
-from timeline.quality import PRESETS, QualityPreset
-from timeline.samples import content_key
+from timeline import edits
+from timeline.plugins.file_formats import FormatError
+from timeline.rendering import mixer
+from timeline.signal.render_presets import PRESETS, QualityPreset
+from timeline.signal.samples import content_key
 from timeline.tiles import SampledTile
 
 RNG = np.random.default_rng(11)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from timeline import exporting, importing
-from timeline.formats import Layers
+from timeline.files import exporting, importing
+from timeline.plugins.file_formats import Layers
 
 RATE = 10_000 / 3  # 3333.33... Hz: the time column alone rounds it
 DRIVE = np.sin(np.arange(50) / 7.0)

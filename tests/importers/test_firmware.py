@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from timeline import exporting, projectfile
 from timeline.cli.main import main
-from timeline.formats import FormatError
+from timeline.files import exporting, projectfile
+from timeline.plugins.file_formats import FormatError
 
 FAN_KNOB = Path(__file__).resolve().parents[2] / "projects" / "fan_knob.htl"
 PER_DEGREE = 180.0 / math.pi  # one entry per degree

@@ -9,8 +9,8 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from timeline import importing
-from timeline.formats import FormatError, Imported
+from timeline.files import importing
+from timeline.plugins.file_formats import FormatError, Imported
 
 EXTENSIONS = [".wav", ".flac", ".aiff", ".ogg", ".csv", ".txt", ".mat", ".ahap", ".haptic", ".otio"]
 FUZZ = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from importers.lofelt import design_document
-from timeline.vibration import Emphasis, VibrationDesign
+from timeline.edits.vibration import Emphasis, VibrationDesign
 
 unit = st.floats(0.0, 1.0).map(lambda v: round(v, 4))
 time = st.floats(0.0, 3.0).map(lambda t: round(t, 3))

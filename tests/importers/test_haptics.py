@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from timeline import edits, exporting, importing
-from timeline.formats import FormatError
+from timeline import edits
+from timeline.files import exporting, importing
 from timeline.model import Fade
+from timeline.plugins.file_formats import FormatError
 from timeline.tiles import SampledTile, generator
 
 

@@ -9,9 +9,11 @@ import numpy as np
 import opentimelineio as otio
 import soundfile as sf
 
-from timeline import edits, exporting, importing, mixer, projectfile
+from timeline import edits
+from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, place_design
+from timeline.files import exporting, importing, projectfile
+from timeline.rendering import mixer
 from timeline.tiles import generator
-from timeline.vibration import Emphasis, VibrationDesign, design_of, place_design
 
 BUZZ = Path(__file__).resolve().parents[2] / "projects" / "notification_buzz.htl"
 

@@ -15,8 +15,10 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from importers import text
-from timeline import edits, exporting, importing, mixer
-from timeline.formats import FormatError, Layers
+from timeline import edits
+from timeline.files import exporting, importing
+from timeline.plugins.file_formats import FormatError, Layers
+from timeline.rendering import mixer
 from timeline.tiles import SampledTile
 
 RNG = np.random.default_rng(3)

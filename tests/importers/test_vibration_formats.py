@@ -10,10 +10,11 @@ import numpy as np
 import pytest
 
 from importers import ahap
-from timeline import edits, exporting, importing
-from timeline.formats import FormatError
+from timeline import edits
+from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, place_design
+from timeline.files import exporting, importing
+from timeline.plugins.file_formats import FormatError
 from timeline.tiles import generator
-from timeline.vibration import Emphasis, VibrationDesign, design_of, place_design
 
 AHAP_AMPLITUDE_BOUND = 0.03  # .haptic -> AHAP -> design, away from steps (measured 0.010)
 META_AHAP_BOUND = 0.02  # Meta-made AHAP -> import -> export: control values (measured < 1e-4)

@@ -10,8 +10,9 @@ from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from importers.ahap import READ_TOLERANCE, WRITE_TOLERANCE
-from timeline import edits, exporting, importing
-from timeline.vibration import Emphasis, VibrationDesign, design_of, place_design
+from timeline import edits
+from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, place_design
+from timeline.files import exporting, importing
 
 PROPERTY = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 unit = st.floats(0.0, 1.0).map(lambda v: round(v, 4))

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from timeline import edits, generator
-from timeline.devices import DeviceInfo, Dynamics
 from timeline.model import Project
+from timeline.plugins.device_protocol import DeviceInfo, Dynamics
 
 KNOB = DeviceInfo(
     "test knob", "kinesthetic", 10_000.0, 0.18, 0.0, "", Dynamics(1e-5, 1e-4, 0, 2000.0, 200.0)

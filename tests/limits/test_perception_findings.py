@@ -7,11 +7,11 @@ import pytest
 
 from tests.limits.designs import KNOB, tone
 from timeline import edits, generator
-from timeline.devices import Hand
 from timeline.limits.actuators import actuator
 from timeline.limits.check import check
 from timeline.limits.skin import displacement_per_unit
 from timeline.limits.thresholds import AMPLITUDE_JND_DB, detection_threshold
+from timeline.plugins.device_protocol import Hand
 
 
 def found(report, kind: str) -> list:

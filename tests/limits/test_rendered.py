@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from tests.limits.designs import KNOB, layered, tone
-from timeline.devices import Hand
 from timeline.limits.actuators import actuator
 from timeline.limits.design import sample
 from timeline.limits.rendered import knob, vibration
+from timeline.plugins.device_protocol import Hand
 
 
 def test_the_clamp_cuts_a_drive_above_full_scale() -> None:

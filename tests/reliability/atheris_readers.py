@@ -15,9 +15,9 @@ from pathlib import Path
 import atheris
 
 with atheris.instrument_imports(include=["timeline", "importers"]):
-    from timeline import projectfile
     from timeline.errors import HapticTimelineError
-    from timeline.importing import read_file
+    from timeline.files import projectfile
+    from timeline.files.importing import read_file
 
 EXT = sys.argv.pop(1)
 TARGET = Path(tempfile.mkdtemp()) / f"fuzzed.{EXT}"

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 import soundfile as sf
 
-from timeline import projectfile
-from timeline.exporting import export_project
+from timeline.files import projectfile
+from timeline.files.exporting import export_project
 
 ROOT = Path(__file__).resolve().parents[2]
 PROJECTS = ROOT / "projects"

@@ -21,7 +21,7 @@ from device.sim import KnobParams, KnobPhysics, SimKnob
 from device.usb import UsbKnob
 from device.usb import protocol as p
 from device.usb.emulated import EmulatedBackend, EmulatedDevice, FaultPlan
-from timeline.devices import CoefficientBlock, DeviceError, Hand
+from timeline.plugins.device_protocol import CoefficientBlock, DeviceError, Hand
 
 from .conftest import count
 

@@ -13,9 +13,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from timeline import projectfile
 from timeline.errors import HapticTimelineError, ProjectFileError
-from timeline.importing import place, read_file
+from timeline.files import projectfile
+from timeline.files.importing import place, read_file
 
 from .conftest import count, example_project, seed_files
 from .mutate import mutations

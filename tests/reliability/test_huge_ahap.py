@@ -11,9 +11,9 @@ import pytest
 
 from importers import _vibration as vib
 from importers.ahap import MAX_EVENTS
-from timeline import importing
 from timeline.cli import main as cli
-from timeline.projectfile import load, save
+from timeline.files import importing
+from timeline.files.projectfile import load, save
 
 from .conftest import example_project
 

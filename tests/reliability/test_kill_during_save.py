@@ -15,8 +15,9 @@ import sys
 import textwrap
 import time
 
-from timeline import edits, projectfile
-from timeline.atomic import PARTIAL, remove_leftovers
+from timeline import edits
+from timeline.files import projectfile
+from timeline.files.atomic import PARTIAL, remove_leftovers
 
 from .conftest import count, example_project
 
@@ -70,7 +71,8 @@ AUTOSAVER = textwrap.dedent(
     import sys
     from PySide6.QtCore import QCoreApplication
     app = QCoreApplication([])
-    from timeline import edits, projectfile
+    from timeline import edits
+    from timeline.files import projectfile
     from timeline.gui.autosave import Autosaver
     from timeline.gui.document import Document
     doc = Document(projectfile.load(sys.argv[1]))

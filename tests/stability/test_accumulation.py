@@ -13,7 +13,7 @@ import tracemalloc
 import pytest
 
 from timeline.bench.accumulation import RATE, long_project, long_reference, overlapping
-from timeline.mixer import Mixer
+from timeline.rendering.mixer import Mixer
 
 ERROR_BOUND = 1e-12
 CACHE = 16 * 2**20

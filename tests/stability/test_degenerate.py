@@ -14,10 +14,10 @@ import pytest
 
 from device.sim import KnobParams, KnobPhysics
 from timeline import Mixer, edits
-from timeline.devices import CoefficientBlock, Hand
 from timeline.errors import EditError
 from timeline.model import Clip
-from timeline.quality import PRESETS
+from timeline.plugins.device_protocol import CoefficientBlock, Hand
+from timeline.signal.render_presets import PRESETS
 from timeline.tiles import SampledTile, generator
 
 FULL = 0.18  # N*m, the drive track's full scale

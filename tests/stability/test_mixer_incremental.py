@@ -16,7 +16,7 @@ import pytest
 from timeline import Mixer, edits
 from timeline.bench.scenes import LargeSpec, large_project
 from timeline.model import Project
-from timeline.quality import PRESETS
+from timeline.signal.render_presets import PRESETS
 from timeline.tiles import generator
 
 SECONDS = 30.0

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from device.sim import KnobParams, KnobPhysics, passive_stiffness, stable_stiffness
-from timeline.devices import CoefficientBlock, Hand, Telemetry
+from timeline.plugins.device_protocol import CoefficientBlock, Hand, Telemetry
 
 TEXTBOOK = dict(quantum=0.0, coulomb=0.0, velocity_cutoff=0.0)
 HOLD = 2.0  # s of constant coefficients after the kick

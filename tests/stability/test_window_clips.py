@@ -7,8 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from timeline.bench.scenes import LargeSpec, large_project
-from timeline.mixer import Mixer
 from timeline.model import Clip, Track
+from timeline.rendering.mixer import Mixer
 
 
 def test_windows_render_bit_identical_to_walking_every_clip(monkeypatch):

@@ -10,14 +10,20 @@ from __future__ import annotations
 import importlib
 from types import ModuleType
 
-MODULES = {  # benchmark name -> module, in running order
+from timeline.plugins import discovery
+
+# Running order by name; plugins' benchmarks (the `haptic_timeline.benchmarks` entry point group,
+# e.g. the simulated knob's) take their place in it, and any not named here run last by name.
+ORDER = (
+    "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
+    "accumulation", "edit-to-feel", "scale", "convert", "formats", "waves", "design-drag",
+)  # fmt: skip
+
+BUILT_IN = {
     "examples": "timeline.bench.examples",
     "mixer": "timeline.bench.mixer_speed",
     "quality": "timeline.bench.quality_presets",
     "resampler": "timeline.bench.resampler",
-    "integrators": "timeline.bench.sim_integrators",
-    "sim-speed": "timeline.bench.sim_speed",
-    "estimator": "timeline.bench.estimator",
     "accumulation": "timeline.bench.accumulation",
     "edit-to-feel": "timeline.bench.edit_to_feel",
     "scale": "timeline.bench.scale",
@@ -26,6 +32,16 @@ MODULES = {  # benchmark name -> module, in running order
     "waves": "timeline.bench.waves",
     "design-drag": "timeline.bench.design_drag",
 }
+
+
+def _registry() -> dict[str, str]:
+    """Benchmark name -> module, built-in and registered by plugins, in running order."""
+    found = {**discovery.names(discovery.BENCHMARKS), **BUILT_IN}
+    order = [n for n in ORDER if n in found] + sorted(set(found) - set(ORDER))
+    return {name: found[name] for name in order}
+
+
+MODULES = _registry()
 
 
 def benchmarks(names: list[str] | None = None) -> dict[str, ModuleType]:

@@ -23,8 +23,8 @@ import numpy as np
 
 from timeline import edits
 from timeline.bench.report import Table
-from timeline.mixer import Mixer
 from timeline.model import Clip, Project
+from timeline.rendering.mixer import Mixer
 from timeline.tiles import generator
 
 NAME = "accumulation"

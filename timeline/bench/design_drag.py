@@ -13,8 +13,8 @@ from pathlib import Path
 
 from timeline import edits
 from timeline.bench.report import Table
+from timeline.edits.vibration import Emphasis, VibrationDesign, place_design, with_emphasis
 from timeline.model import Project
-from timeline.vibration import Emphasis, VibrationDesign, place_design, with_emphasis
 
 NAME = "design-drag"
 SUMMARY = "one mouse move of a design clip dragging its emphasis clips, against moving each"

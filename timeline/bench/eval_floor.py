@@ -26,12 +26,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from timeline.band_limit import band_limited
-from timeline.clip_render import clip_sample_range
-from timeline.fades import fade_in_gain
 from timeline.model import Clip, Project
-from timeline.quality import QualityPreset, preset
-from timeline.resample import _SOXR_MARGIN, _aligned_start, _fractional_delay, _interpolate
+from timeline.rendering.clip_render import clip_sample_range
+from timeline.signal.band_limit import band_limited
+from timeline.signal.fades import fade_in_gain
+from timeline.signal.render_presets import QualityPreset, preset
+from timeline.signal.resample import _SOXR_MARGIN, _aligned_start, _fractional_delay, _interpolate
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from timeline.bench.report import Table, best_time
-from timeline.mixer import Mixer
-from timeline.projectfile import load
+from timeline.files.projectfile import load
+from timeline.rendering.mixer import Mixer
 
 NAME = "examples"
 SUMMARY = "render time of the example projects (needs the source tree's projects/)"

@@ -13,12 +13,13 @@ from pathlib import Path
 
 import numpy as np
 
-from timeline import edits, exporting, importing
+from timeline import edits
 from timeline.bench.report import Table, best_time
-from timeline.formats import FormatError, all_formats
+from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
+from timeline.files import exporting, importing
 from timeline.model import Project
+from timeline.plugins.file_formats import FormatError, all_formats
 from timeline.tiles import SampledTile
-from timeline.vibration import Emphasis, VibrationDesign, place_design
 
 NAME = "formats"
 SUMMARY = ".haptic and AHAP import/export time of long designs, as ratios to a JSON parse"

@@ -16,9 +16,9 @@ import numpy as np
 from timeline import edits
 from timeline.bench.report import Table, best_time, figure, save
 from timeline.bench.scenes import FULL, QUICK, LargeSpec, clip_samples, large_project
-from timeline.mixer import Mixer
 from timeline.model import Project
-from timeline.resample import forget_resampled
+from timeline.rendering.mixer import Mixer
+from timeline.signal.resample import forget_resampled
 
 NAME = "mixer"
 SUMMARY = "mixer throughput vs one memory pass; re-render after a 1 s clip edit"
@@ -41,7 +41,7 @@ def memory_pass(total: int, n: int, repeat: int) -> float:
 
 def fresh_render(project: Project, stop: float, quality: str = "normal") -> None:
     """A full render from scratch: a new mixer, and recordings resampled again (as in a new
-    process; timeline.resample keeps a recording's resampling for its next clips)."""
+    process; timeline.signal.resample keeps a recording's resampling for its next clips)."""
     forget_resampled()
     Mixer().render(project, 0.0, stop, quality=quality)
 

@@ -17,9 +17,9 @@ import numpy as np
 
 from timeline.bench.report import Table, best_time, figure, save
 from timeline.bench.scenes import RECORDING_RATE, SCENE_RATE, Scene, quality_scenes
-from timeline.kinds import track_kind
-from timeline.mixer import Mixer
-from timeline.quality import PRESETS, QualityPreset
+from timeline.plugins.track_kinds import track_kind
+from timeline.rendering.mixer import Mixer
+from timeline.signal.render_presets import PRESETS, QualityPreset
 from timeline.tiles import SampledTile
 
 NAME = "quality"

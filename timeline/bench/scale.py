@@ -25,9 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from timeline import edits, projectfile
+from timeline import edits
 from timeline.bench.report import Table, best_cpu_time, best_time, figure, save
 from timeline.bench.scenes import LargeSpec, large_project
+from timeline.files import projectfile
 from timeline.tiles import generator
 
 NAME = "scale"
@@ -141,7 +142,7 @@ def render_costs(clips: int, seconds: float, repeat: int) -> dict[str, float]:
     from timeline.bench.eval_floor import evaluation_work, run_all
     from timeline.bench.mixer_speed import fresh_render, memory_pass
     from timeline.bench.scenes import clip_samples
-    from timeline.mixer import Mixer
+    from timeline.rendering.mixer import Mixer
 
     project = large_project(LargeSpec(64, clips, seconds, 0, off_grid=True))
     total = clip_samples(project, project.rate)

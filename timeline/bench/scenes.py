@@ -179,7 +179,7 @@ def quality_scenes(seconds: float = 2.0) -> list[Scene]:
     ref[: short.size] = _tones(short, 1.37)
     scenes.append(Scene("recording stretched x1.37", stretched, ref, True))
     faded = _one_clip(sine, seconds, **{"in": (0.5, "exponential"), "out": (0.7, "s-curve")})
-    from timeline.fades import fade_in_gain
+    from timeline.signal.fades import fade_in_gain
 
     env = fade_in_gain(t / 0.5, "exponential") * fade_in_gain((seconds - t) / 0.7, "s-curve")
     scenes.append(Scene("sine with fades", faded, sine.evaluate(t) * env, False))

@@ -13,8 +13,8 @@ from pathlib import Path
 import numpy as np
 
 from timeline.bench.report import Table
-from timeline.harmonic_waves import aliased_fraction, harmonics_below
-from timeline.quality import preset
+from timeline.signal.harmonic_waves import aliased_fraction, harmonics_below
+from timeline.signal.render_presets import preset
 from timeline.tiles import generator
 
 NAME = "waves"

@@ -14,11 +14,11 @@ from typing import TYPE_CHECKING
 
 from timeline.cli.play_cmd import parse_option
 from timeline.limits.actuators import PROFILES
-from timeline.quality import DEFAULT_QUALITY, PRESETS
+from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
 if TYPE_CHECKING:  # the limits, devices and mixer load when a design is checked, not for --help
-    from timeline.devices import DeviceInfo, Hand
     from timeline.limits.check import Report
+    from timeline.plugins.device_protocol import DeviceInfo, Hand
 
 FOUND = 3
 
@@ -73,10 +73,10 @@ def as_json(path: str, info: DeviceInfo, report: Report, hand: Hand) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.devices import Hand, open_device
+    from timeline.files.projectfile import load
     from timeline.limits.actuators import actuator
     from timeline.limits.check import check
-    from timeline.projectfile import load
+    from timeline.plugins.device_protocol import Hand, open_device
 
     project = load(args.project)
     hand = Hand.parse(args.hand)

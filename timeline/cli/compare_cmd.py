@@ -10,7 +10,7 @@ import json
 import sys
 from pathlib import Path
 
-from timeline.quality import DEFAULT_QUALITY, PRESETS
+from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -23,7 +23,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.projectfile import load
+    from timeline.files.projectfile import load
     from timeline.similarity.compare import compare
     from timeline.similarity.distance import ALIKE
     from timeline.similarity.icons import variant_icons

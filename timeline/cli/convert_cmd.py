@@ -53,7 +53,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.convert import convert_file
+    from timeline.files.convert import convert_file
 
     project = convert_file(args.sound, args.output, settings_from(args))
     print(f"converted {args.sound} -> {args.output} ({project.duration:.3f} s)", file=sys.stderr)

@@ -38,9 +38,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.band_limit import aliasing_notes
-    from timeline.exporting import export_project
-    from timeline.projectfile import load
+    from timeline.files.exporting import export_project
+    from timeline.files.projectfile import load
+    from timeline.rendering.aliasing import aliasing_notes
 
     project = load(args.project)
     options = {"fixed_point": True} if args.fixed_point else {}

@@ -9,7 +9,7 @@ from typing import TextIO
 
 from timeline.cli.notes import print_notes
 from timeline.cli.options import number, positive
-from timeline.kinds import DEFAULT_KIND
+from timeline.plugins.track_kinds import DEFAULT_KIND
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -77,7 +77,7 @@ class ProgressBar:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.importing import import_into_project_file
+    from timeline.files.importing import import_into_project_file
 
     bar = ProgressBar(f"importing {args.file}")
     try:

@@ -14,8 +14,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.info import describe, summary
-    from timeline.projectfile import load
+    from timeline.files.projectfile import load
+    from timeline.files.summary import describe, summary
 
     project = load(args.project)
     print(json.dumps(summary(project), indent=2) if args.json else describe(project))

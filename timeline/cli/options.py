@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from timeline.quality import DEFAULT_QUALITY, PRESETS
+from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
 
 def number(text: str) -> float:

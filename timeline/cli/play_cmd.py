@@ -8,15 +8,15 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from timeline.atomic import check_target
 from timeline.errors import HapticTimelineError
-from timeline.quality import DEFAULT_QUALITY, PRESETS
+from timeline.files.atomic import check_target
+from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
 if TYPE_CHECKING:  # numpy, the devices and the mixer load when a project is played, not for --help
     import numpy as np
 
-    from timeline.devices import Telemetry
-    from timeline.playback import Playback
+    from timeline.plugins.device_protocol import Telemetry
+    from timeline.rendering.playback import Playback
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -88,10 +88,10 @@ def parse_option(text: str) -> tuple[str, Any]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.band_limit import aliasing_notes
-    from timeline.devices import Hand, open_device
-    from timeline.playback import prepare
-    from timeline.projectfile import load
+    from timeline.files.projectfile import load
+    from timeline.plugins.device_protocol import Hand, open_device
+    from timeline.rendering.aliasing import aliasing_notes
+    from timeline.rendering.playback import prepare
 
     project = load(args.project)
     hand = Hand.parse(args.hand)
@@ -141,7 +141,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def _layer_axis(ax, t: np.ndarray, values: np.ndarray, kind_id: str) -> None:
-    from timeline.kinds import track_kind
+    from timeline.plugins.track_kinds import track_kind
 
     try:
         kind = track_kind(kind_id.split("+")[0])

@@ -11,7 +11,7 @@ from timeline.cli.options import add_range_options, parse_tracks
 from timeline.errors import HapticTimelineError
 
 if TYPE_CHECKING:  # numpy and the mixer load when something is rendered, not for --help
-    from timeline.formats import Layers
+    from timeline.plugins.file_formats import Layers
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -25,7 +25,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def _write_npz(layers: Layers, path: Path) -> None:
     import numpy as np
 
-    from timeline.atomic import write_atomically
+    from timeline.files.atomic import write_atomically
 
     axis = "time" if layers.axis == "time" else "angle"
     positions = layers.start + np.arange(layers.length) / layers.rate
@@ -39,11 +39,11 @@ def _write_npz(layers: Layers, path: Path) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from timeline.band_limit import aliasing_notes
-    from timeline.exporting import write_layers
-    from timeline.formats import Layers
-    from timeline.mixer import render
-    from timeline.projectfile import load
+    from timeline.files.exporting import write_layers
+    from timeline.files.projectfile import load
+    from timeline.plugins.file_formats import Layers
+    from timeline.rendering.aliasing import aliasing_notes
+    from timeline.rendering.mixer import render
 
     project = load(args.project)
     rate = project.rate if args.rate is None else args.rate

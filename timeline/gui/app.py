@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from timeline import projectfile
+from timeline.files import projectfile
 
 ORGANISATION = "haptic-timeline"  # QSettings (recent files) live under this name
 

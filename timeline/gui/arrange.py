@@ -5,10 +5,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from timeline import edits, markers
+from timeline import edits
+from timeline.edits import markers
+from timeline.edits.placement import free_start
+from timeline.edits.vibration import emphasis_of, with_emphasis
 from timeline.model import Project
-from timeline.placement import free_start
-from timeline.vibration import emphasis_of, with_emphasis
 
 from .document import Document
 from .geometry import axis_text

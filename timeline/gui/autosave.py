@@ -11,8 +11,8 @@ from pathlib import Path
 import platformdirs
 from PySide6.QtCore import QObject, QTimer
 
-from timeline import projectfile
-from timeline.atomic import write_atomically
+from timeline.files import projectfile
+from timeline.files.atomic import write_atomically
 from timeline.model import Project
 
 from .document import Document

@@ -9,8 +9,8 @@ from PySide6.QtCore import QLineF, QPointF, QRectF, Qt
 from PySide6.QtGui import QBrush, QColor, QFont, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import QGraphicsItem, QStyleOptionGraphicsItem, QWidget
 
-from timeline.fades import fade_in_gain
 from timeline.model import Clip
+from timeline.signal.fades import fade_in_gain
 from timeline.tiles import Tile
 
 from .clip_shape import clip_columns

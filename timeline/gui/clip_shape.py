@@ -11,9 +11,9 @@ import math
 
 import numpy as np
 
-from timeline.fades import fade_envelope
 from timeline.model import Clip
-from timeline.quality import preset
+from timeline.signal.fades import fade_envelope
+from timeline.signal.render_presets import preset
 from timeline.tiles import SampledTile, Tile
 
 from .peaks import PeakPyramid, PyramidCache

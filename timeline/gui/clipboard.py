@@ -11,10 +11,11 @@ from collections.abc import Callable
 from PySide6.QtCore import QMimeData
 from PySide6.QtGui import QGuiApplication
 
-from timeline import clipboard, edits
+from timeline import edits
+from timeline.edits.vibration import with_emphasis
 from timeline.errors import HapticTimelineError
+from timeline.files import clipboard
 from timeline.model import Project
-from timeline.vibration import with_emphasis
 
 from .document import Document
 

@@ -12,8 +12,8 @@ from typing import Any
 
 from PySide6.QtCore import QObject, Signal
 
+from timeline.edits.history import History
 from timeline.errors import HapticTimelineError
-from timeline.history import History
 from timeline.model import Project
 
 

@@ -15,8 +15,8 @@ from typing import Any
 
 from PySide6.QtCore import QObject, Signal
 
-from timeline import exporting, importing
 from timeline.errors import HapticTimelineError
+from timeline.files import exporting, importing
 from timeline.model import Project
 
 

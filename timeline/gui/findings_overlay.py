@@ -17,11 +17,11 @@ from PySide6.QtCore import QObject, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QBrush, QColor, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsRectItem
 
-from timeline.devices import DeviceInfo, Hand, open_device
 from timeline.errors import HapticTimelineError
-from timeline.kinds import track_kind
 from timeline.limits.check import Report, check
 from timeline.model import Project
+from timeline.plugins.device_protocol import DeviceInfo, Hand, open_device
+from timeline.plugins.track_kinds import track_kind
 
 from .rendered_overlay import RenderedLayer, peaks_of
 from .trace_peaks import Peaks

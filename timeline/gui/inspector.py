@@ -10,8 +10,8 @@ from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QMouseEvent
 from PySide6.QtWidgets import QDoubleSpinBox, QFormLayout, QLabel, QVBoxLayout, QWidget
 
-from timeline import tile_params
-from timeline.generators import GENERATORS
+from timeline.edits import tile_params
+from timeline.signal.generators import GENERATORS
 from timeline.tiles import GeneratorTile, SampledTile
 
 from .document import Document

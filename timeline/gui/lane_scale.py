@@ -6,8 +6,8 @@ from __future__ import annotations
 from PySide6.QtCore import QLineF, QPointF, QRectF
 from PySide6.QtGui import QColor, QFont, QPainter, QPen
 
-from timeline.kinds import track_kind
 from timeline.model import Project, Track
+from timeline.plugins.track_kinds import track_kind
 
 from .clip_item import value_offset
 from .geometry import CLIP_MARGIN, Geometry

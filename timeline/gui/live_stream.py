@@ -18,13 +18,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from timeline import playback
-from timeline.devices import CoefficientBlock, PositionProgram, PositionTable
 from timeline.errors import HapticTimelineError
-from timeline.kinds import track_kind
-from timeline.mixer import Mixer
 from timeline.model import Project
-from timeline.quality import DEFAULT_QUALITY
+from timeline.plugins.device_protocol import CoefficientBlock, PositionProgram, PositionTable
+from timeline.plugins.track_kinds import track_kind
+from timeline.rendering import playback
+from timeline.rendering.mixer import Mixer
+from timeline.signal.render_presets import DEFAULT_QUALITY
 
 BLOCK_SECONDS = 0.01
 CHUNK_SECONDS = 0.5

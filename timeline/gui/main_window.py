@@ -18,12 +18,13 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from timeline import edits, importing, projectfile
+from timeline import edits
+from timeline.edits.placement import into_gap
+from timeline.edits.vibration import with_emphasis
 from timeline.errors import HapticTimelineError
-from timeline.formats import all_formats
+from timeline.files import importing, projectfile
 from timeline.model import Project
-from timeline.placement import into_gap
-from timeline.vibration import with_emphasis
+from timeline.plugins.file_formats import all_formats
 
 from . import variants
 from .arrange import Arrange

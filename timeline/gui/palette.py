@@ -21,8 +21,9 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from timeline import edits, exporting, importing
+from timeline import edits
 from timeline.errors import HapticTimelineError
+from timeline.files import exporting, importing
 from timeline.model import Project
 from timeline.tiles import Tile
 

@@ -18,11 +18,11 @@ from collections.abc import Iterable
 import numpy as np
 from PySide6.QtCore import QObject, QTimer, Signal
 
-from timeline import playback
-from timeline.devices import Device, Hand, LiveTelemetry, device_names, open_device
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
-from timeline.sound_out import SoundOut
+from timeline.plugins.device_protocol import Device, Hand, LiveTelemetry, device_names, open_device
+from timeline.rendering import playback
+from timeline.rendering.sound_out import SoundOut
 
 from .live_stream import LiveStream, LiveTables
 

@@ -20,8 +20,8 @@ from PySide6.QtCore import QRectF, QSettings, Qt
 from PySide6.QtGui import QAction, QColor, QFont, QPainter, QPainterPath, QPen
 from PySide6.QtWidgets import QGraphicsItem, QGraphicsScene, QGraphicsSimpleTextItem, QMenu
 
-from timeline.kinds import track_kind
 from timeline.model import Project
+from timeline.plugins.track_kinds import track_kind
 
 from .geometry import Geometry
 from .lane_scale import level_y

@@ -13,7 +13,7 @@ from PySide6.QtCore import QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import QInputDialog, QMenu, QWidget
 
-from timeline import markers
+from timeline.edits import markers
 
 from .geometry import axis_text, display_factor, display_unit, format_tick, nice_step
 from .timeline_view import TimelineView

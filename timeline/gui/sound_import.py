@@ -32,10 +32,10 @@ from PySide6.QtWidgets import (
 )
 
 from timeline.analysis import DEFAULTS, AnalysisSettings, SettingsError
-from timeline.convert import ConvertedSound, analyse_sound_file, place_converted
+from timeline.edits.placement import into_gap
 from timeline.errors import HapticTimelineError
+from timeline.files.convert import ConvertedSound, analyse_sound_file, place_converted
 from timeline.gui.file_jobs import FileJob
-from timeline.placement import into_gap
 
 SOUND_EXTENSIONS = "*.wav *.flac *.ogg *.aif *.aiff *.mp3 *.opus"
 DROP_MODIFIER = Qt.KeyboardModifier.AltModifier

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from timeline import tile_params
+from timeline.edits import tile_params
 
 from .document import Document
 

@@ -10,9 +10,9 @@ from PySide6.QtCore import QLineF, QRectF
 from PySide6.QtGui import QColor, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsLineItem, QGraphicsScene
 
-from timeline.kinds import track_kind
+from timeline.edits.placement import overlaps
 from timeline.model import Project, Track
-from timeline.placement import overlaps
+from timeline.plugins.track_kinds import track_kind
 from timeline.tiles import Tile
 
 from .clip_item import ClipItem

@@ -8,8 +8,8 @@ from PySide6.QtCore import QPoint, QPointF, Qt, Signal
 from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QWheelEvent
 from PySide6.QtWidgets import QGraphicsView, QLabel, QMenu
 
+from timeline.edits.vibration import with_emphasis
 from timeline.model import Track
-from timeline.vibration import with_emphasis
 
 from . import lane_scale
 from .clip_item import ClipItem

@@ -19,8 +19,8 @@ from PySide6.QtWidgets import (
 )
 
 from timeline import edits
-from timeline.kinds import kinds_for_axis, track_kind
 from timeline.model import Track
+from timeline.plugins.track_kinds import kinds_for_axis, track_kind
 
 from .document import Document
 from .geometry import LANE_HEIGHT

@@ -14,8 +14,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from timeline.devices import HAND_MODELS, HAND_MODES, Hand
-from timeline.devices.hand import DEFAULT_PUSH_MNM, DEFAULT_TURN_DEG_PER_S
+from timeline.plugins.device_protocol import HAND_MODELS, HAND_MODES, Hand
+from timeline.plugins.device_protocol.hand import DEFAULT_PUSH_MNM, DEFAULT_TURN_DEG_PER_S
 
 from .geometry import axis_text
 from .player import Player

@@ -20,11 +20,11 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from timeline import tile_edits
+from timeline.edits import tile_shape
 from timeline.model import Track
+from timeline.signal.vibration_design import carrier_hz
 from timeline.tiles import Tile
-from timeline.vibration_design import carrier_hz
-from timeline.vibration_tile import VibrationTile
+from timeline.tiles.vibration_tile import VibrationTile
 
 from .clip_shape import tile_samples
 from .document import Document
@@ -34,7 +34,7 @@ from .palette import RANGE_MIME
 from .tile_editing import edit_tile
 
 PICK_PX = 8.0
-ENVELOPE_COLORS = {tile_edits.AMPLITUDE: "#d1495b", tile_edits.FREQUENCY: "#2a9d8f"}
+ENVELOPE_COLORS = {tile_shape.AMPLITUDE: "#d1495b", tile_shape.FREQUENCY: "#2a9d8f"}
 MARGIN = 10.0
 DELETE_KEYS = (Qt.Key.Key_Delete, Qt.Key.Key_Backspace)
 
@@ -136,8 +136,8 @@ class Canvas(QWidget):
     def _paint_envelopes(self, painter: QPainter, tile: VibrationTile) -> None:
         """A design's envelopes over its carrier: the edited one bold, the other faint; in the
         frequency lane, what 0 and 1 mean in Hz."""
-        for lane in tile_edits.LANES:
-            points = tile_edits.points_of(tile, lane) or ()
+        for lane in tile_shape.LANES:
+            points = tile_shape.points_of(tile, lane) or ()
             edited = lane == self.editor.lane
             color = QColor(ENVELOPE_COLORS[lane])
             if not edited:
@@ -149,11 +149,11 @@ class Canvas(QWidget):
             painter.drawPolyline(
                 QPolygonF([QPointF(self.x_of(t), self.y_of(v)) for t, v in points])
             )
-        if self.editor.lane == tile_edits.FREQUENCY:
+        if self.editor.lane == tile_shape.FREQUENCY:
             font = QFont()
             font.setPointSizeF(7.0)
             painter.setFont(font)
-            painter.setPen(QColor(ENVELOPE_COLORS[tile_edits.FREQUENCY]))
+            painter.setPen(QColor(ENVELOPE_COLORS[tile_shape.FREQUENCY]))
             for value in (0.0, 1.0):  # just below each line, clear of the name and the scale
                 painter.drawText(
                     QPointF(MARGIN + 2, self.y_of(value) + 11), f"{value:g} = {hz_text(value)}"
@@ -235,7 +235,7 @@ class Canvas(QWidget):
         pos = event.position()
         index = self.editor.apply(
             self.editor.label("add"),
-            tile_edits.add_point,
+            tile_shape.add_point,
             self.t_of(pos.x()),
             self.v_of(pos.y()),
             self.editor.lane,
@@ -270,7 +270,7 @@ def hz_text(frequency: float) -> str:
 
 
 def _move_keep_index(project, tile_id: str, index: int, t: float, v: float, lane: str):
-    return tile_edits.move_point(project, tile_id, index, t, v, lane), index
+    return tile_shape.move_point(project, tile_id, index, t, v, lane), index
 
 
 class WaveformEditor(QWidget):
@@ -282,10 +282,10 @@ class WaveformEditor(QWidget):
         self.tile_id: str | None = None
         self.point: int | None = None
         self.range = (0.0, 0.0)
-        self.lane = tile_edits.AMPLITUDE
+        self.lane = tile_shape.AMPLITUDE
         self.canvas = Canvas(self)
         self.lane_box = QComboBox()
-        self.lane_box.addItems([lane.capitalize() for lane in tile_edits.LANES])
+        self.lane_box.addItems([lane.capitalize() for lane in tile_shape.LANES])
         self.lane_box.setToolTip("Which envelope of the design the points edit")
         self.lane_box.currentIndexChanged.connect(self.set_lane)
         self.hz_label = QLabel()
@@ -322,7 +322,7 @@ class WaveformEditor(QWidget):
 
     def points(self) -> tuple[tuple[float, float], ...] | None:
         """The shown tile's draggable points (a design's: those of the chosen envelope)."""
-        return tile_edits.points_of(self.tile, self.lane)
+        return tile_shape.points_of(self.tile, self.lane)
 
     def label(self, verb: str) -> str:
         """An undo step's name for a point edit: "move frequency point", "add spline point"."""
@@ -331,8 +331,8 @@ class WaveformEditor(QWidget):
 
     def set_lane(self, index: int) -> None:
         """Edit a design's amplitude (0) or frequency (1) envelope."""
-        if tile_edits.LANES[index] != self.lane:
-            self.lane, self.point = tile_edits.LANES[index], None
+        if tile_shape.LANES[index] != self.lane:
+            self.lane, self.point = tile_shape.LANES[index], None
             self.lane_box.setCurrentIndex(index)
             self.refresh()
 
@@ -377,7 +377,7 @@ class WaveformEditor(QWidget):
         self.t_box.setSuffix(" s" if axis == "time" else "°")
         design = isinstance(tile, VibrationTile)
         self.lane_box.setVisible(design)
-        frequency = design and self.lane == tile_edits.FREQUENCY
+        frequency = design and self.lane == tile_shape.FREQUENCY
         self.hz_label.setVisible(frequency)
         self.hz_label.setText("")
         self.v_box.setPrefix("f " if frequency else "value ")
@@ -403,7 +403,7 @@ class WaveformEditor(QWidget):
             return
         self.apply(
             self.label("set"),
-            tile_edits.move_point,
+            tile_shape.move_point,
             self.point,
             self.t_box.value() / display_factor(self.doc.project.axis),
             self.v_box.value(),
@@ -419,13 +419,13 @@ class WaveformEditor(QWidget):
         if (
             self.point is not None
             and self.tile_id is not None
-            and self.apply(self.label("delete"), tile_edits.remove_point, self.point, self.lane)
+            and self.apply(self.label("delete"), tile_shape.remove_point, self.point, self.lane)
         ):
             self.select_point(None)
 
     def editable_copy(self) -> None:
         """Copy the shape into an editable spline tile and edit that."""
-        tile_id = self.doc.apply("editable copy", tile_edits.editable_copy, self.tile_id)
+        tile_id = self.doc.apply("editable copy", tile_shape.editable_copy, self.tile_id)
         if tile_id:
             self.doc.select_tile(tile_id)
 
@@ -436,4 +436,4 @@ class WaveformEditor(QWidget):
         tile_id = tile_id or self.tile_id
         a = self.range[0] if a is None else a
         b = self.range[1] if b is None else b
-        return self.doc.apply("range to palette", tile_edits.range_to_palette, tile_id, a, b, tab)
+        return self.doc.apply("range to palette", tile_shape.range_to_palette, tile_id, a, b, tab)

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from timeline.devices import Actuator, DeviceInfo, Hand
 from timeline.limits import device_checks, perception_checks
 from timeline.limits.design import sample
 from timeline.limits.findings import Finding
 from timeline.model import Project
+from timeline.plugins.device_protocol import Actuator, DeviceInfo, Hand
 
 MAX_CLIPS_COMPARED = 500  # beyond this, clip-to-clip JND steps are not checked (say so)
 

@@ -6,9 +6,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from timeline.mixer import grid_length, render
 from timeline.model import Project
-from timeline.playback import layer_terms
+from timeline.rendering.mixer import grid_length, render
+from timeline.rendering.playback import layer_terms
 
 
 @dataclass(frozen=True, eq=False)

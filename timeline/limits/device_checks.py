@@ -7,12 +7,12 @@ from collections.abc import Callable
 import numpy as np
 from scipy.signal import butter, iirpeak, lfilter
 
-from timeline.devices import Actuator, DeviceInfo
 from timeline.limits import servo
 from timeline.limits.design import Sampled
 from timeline.limits.findings import Finding, spans
 from timeline.limits.frames import frames
 from timeline.limits.thresholds import AMPLITUDE_JND_DB
+from timeline.plugins.device_protocol import Actuator, DeviceInfo
 
 JOIN = 0.05  # s (rad on a position axis): crossings closer than this are one finding
 

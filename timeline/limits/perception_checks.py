@@ -7,7 +7,6 @@ from itertools import combinations
 
 import numpy as np
 
-from timeline.devices import Actuator, DeviceInfo, Hand
 from timeline.limits.design import Sampled, sample, variant_project
 from timeline.limits.findings import Finding, spans
 from timeline.limits.frames import frames
@@ -21,6 +20,7 @@ from timeline.limits.thresholds import (
     level_difference_db,
 )
 from timeline.model import Project
+from timeline.plugins.device_protocol import Actuator, DeviceInfo, Hand
 
 SILENT = 1e-9  # of the device's maximum output: below this a drive sample is silence
 

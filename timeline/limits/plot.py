@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from timeline.atomic import write_atomically
-from timeline.devices import Actuator, DeviceInfo, Hand
+from timeline.files.atomic import write_atomically
 from timeline.limits.check import Report
 from timeline.limits.design import sample
 from timeline.limits.rendered import Trace, knob, vibration
 from timeline.model import Project
+from timeline.plugins.device_protocol import Actuator, DeviceInfo, Hand
 
 COLOURS = {"device": "#e67e22", "perception": "#8e44ad"}
 

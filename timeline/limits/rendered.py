@@ -18,13 +18,13 @@ from functools import cached_property
 import numpy as np
 from scipy.signal import savgol_filter
 
-from timeline.devices import Actuator, DeviceInfo, Hand, open_device
-from timeline.devices.hand import DEFAULT_TURN_DEG_PER_S
 from timeline.errors import HapticTimelineError
 from timeline.limits.design import Sampled
 from timeline.limits.device_checks import actuator_output
 from timeline.model import Project
-from timeline.playback import prepare
+from timeline.plugins.device_protocol import Actuator, DeviceInfo, Hand, open_device
+from timeline.plugins.device_protocol.hand import DEFAULT_TURN_DEG_PER_S
+from timeline.rendering.playback import prepare
 
 DERIVATIVE_WINDOW = 0.002  # s: the zero-phase fit the exact derivatives come from
 

@@ -5,17 +5,17 @@ numbers to the detection threshold.
   frequency response; displacement = acceleration / (2*pi*f)^2.
 * A knob turns against its rotor and the hand: angle = torque / |K_h - (J + J_h)*w^2 +
   j*w*(b + B_h)|, and the fingertip on its rim moves radius * angle. K_h, B_h and J_h are the
-  given hand's (timeline.devices.Hand: `check --hand`, the editor's transport; a pushing hand
-  has no grip, only its inertia); the radius is its model's (pinch 15 mm, grasp 20 mm) or
-  KNOB_RADIUS, a typical control knob. A hand that lets go (`free`) feels nothing: None.
+  given hand's (timeline.plugins.device_protocol.Hand: `check --hand`, the editor's transport;
+  a pushing hand has no grip, only its inertia); the radius is its model's (pinch 15 mm, grasp 20
+  mm) or KNOB_RADIUS, a typical control knob. A hand that lets go (`free`) feels nothing: None.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from timeline.devices import Actuator, DeviceInfo, Hand
-from timeline.devices.hand_models import HAND_MODELS
+from timeline.plugins.device_protocol import Actuator, DeviceInfo, Hand
+from timeline.plugins.device_protocol.hand_models import HAND_MODELS
 
 KNOB_RADIUS = 0.015  # m: where the fingertips touch a 30 mm knob
 G = 9.81  # m/s^2

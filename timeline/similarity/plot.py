@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from timeline.atomic import write_atomically
+from timeline.files.atomic import write_atomically
 from timeline.similarity.compare import Comparison
 from timeline.similarity.distance import ALIKE
 from timeline.similarity.labels import label_groups

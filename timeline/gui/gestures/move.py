@@ -5,8 +5,8 @@ from __future__ import annotations
 from PySide6.QtCore import QPointF
 
 from timeline import edits
+from timeline.edits.vibration import with_emphasis
 from timeline.model import Project
-from timeline.vibration import with_emphasis
 
 from ..geometry import axis_text
 from .base import Gesture
@@ -14,7 +14,7 @@ from .base import Gesture
 
 class MoveGesture(Gesture):
     """Move the pressed clip, and the other selected clips (and a vibration design's emphasis
-    clips, timeline.vibration.emphasis_of) with it in time."""
+    clips, timeline.edits.vibration.emphasis_of) with it in time."""
 
     label = "move clip"
 

@@ -1,0 +1,122 @@
+"""`convert`: a sound file to a haptic design kept as editable data, and the sound beside it.
+
+The analysis (timeline.analysis) gives amplitude and frequency envelopes and emphasis; they are
+placed on a drive track as a vibration design (timeline.edits.vibration: envelope breakpoints and
+emphasis kept as data the designer edits on the timeline). In a project the sound itself goes on
+an `audio` context track at the same time, to see and hear while editing; .haptic and .ahap
+files hold the design only.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from timeline import edits
+from timeline.analysis import DEFAULTS, AnalysisSettings, SoundAnalysis
+from timeline.analysis.source import analyse_file, mono_blocks
+from timeline.edits.sound_track import add_sound
+from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
+from timeline.errors import HapticTimelineError
+from timeline.model import Project
+
+MAX_SOUND_SECONDS = 3600.0  # a project keeps the source sound up to an hour long
+PROJECT_EXTENSIONS = (".htl",)
+
+
+class ConvertError(HapticTimelineError):
+    """A conversion that cannot be done as asked; nothing was written."""
+
+
+@dataclass(frozen=True)
+class ConvertedSound:
+    """A sound file's analysis, and its mono samples when the project is to keep them."""
+
+    path: Path
+    analysis: SoundAnalysis
+    sound: np.ndarray | None
+
+
+def design_of_analysis(analysis: SoundAnalysis) -> VibrationDesign:
+    """The analysis as a vibration design (breakpoints in seconds, values 0..1)."""
+    return VibrationDesign(
+        amplitude=tuple((float(t), float(v)) for t, v in analysis.amplitude),
+        frequency=tuple((float(t), float(v)) for t, v in analysis.frequency),
+        emphasis=tuple(Emphasis(float(t), float(a), float(f)) for t, a, f in analysis.emphasis),
+        duration=float(analysis.duration),
+    )
+
+
+def analyse_sound_file(
+    path: str | os.PathLike,
+    settings: AnalysisSettings = DEFAULTS,
+    *,
+    keep_sound: bool = True,
+    progress: Callable[[float], None] | None = None,
+) -> ConvertedSound:
+    """Analyse a sound file; with `keep_sound` also read it (mono) for an audio track.
+
+    `progress` hears the fraction analysed; it may raise to stop (the editor's Cancel).
+    """
+    path = Path(path)
+    analysis = analyse_file(path, settings, progress)
+    if not keep_sound:
+        return ConvertedSound(path, analysis, None)
+    if analysis.duration > MAX_SOUND_SECONDS:
+        raise ConvertError(
+            f"{path.name} lasts {analysis.duration / 60:.0f} minutes; a project keeps sounds up to "
+            f"{MAX_SOUND_SECONDS / 60:.0f} minutes (convert it to .haptic or .ahap instead)"
+        )
+    return ConvertedSound(path, analysis, np.concatenate(list(mono_blocks(path))))
+
+
+def place_converted(
+    project: Project, converted: ConvertedSound, *, at: float = 0.0, drive_track: str | None = None
+) -> Project:
+    """The design on a drive track (the first, or `drive_track`) and the sound on a new audio
+    track, both starting at `at` seconds."""
+    path, analysis = converted.path, converted.analysis
+    if converted.sound is not None:
+        project, _ = add_sound(
+            project, converted.sound, analysis.rate, name=path.stem, source=path.name, at=at
+        )
+    design = design_of_analysis(analysis)
+    return place_design(
+        project, design, at=at, track_id=drive_track, name=path.stem, source=path.name
+    )
+
+
+def sound_to_project(
+    path: str | os.PathLike,
+    settings: AnalysisSettings = DEFAULTS,
+    *,
+    project: Project | None = None,
+    at: float = 0.0,
+    keep_sound: bool = True,
+    drive_track: str | None = None,
+) -> Project:
+    """A project (new, or `project` extended) with the sound's design, and the sound itself."""
+    converted = analyse_sound_file(path, settings, keep_sound=keep_sound)
+    base = edits.new_project() if project is None else project
+    return place_converted(base, converted, at=at, drive_track=drive_track)
+
+
+def convert_file(
+    sound: str | os.PathLike, output: str | os.PathLike, settings: AnalysisSettings = DEFAULTS
+) -> Project:
+    """Analyse `sound` and write the design to `output` (.haptic, .ahap or a .htl project)."""
+    from timeline.files import projectfile
+    from timeline.files.exporting import export_project
+
+    output = Path(output)
+    if output.suffix.lower() in PROJECT_EXTENSIONS:
+        project = sound_to_project(sound, settings)
+        projectfile.save(project, output)
+    else:
+        project = sound_to_project(sound, settings, keep_sound=False)
+        export_project(project, output)
+    return project

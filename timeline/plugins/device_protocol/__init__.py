@@ -1,0 +1,77 @@
+"""The host-side device protocol: what a device declares, what it plays, what it reports.
+
+A device plays coefficient blocks of the torque law
+
+    tau = d - k*theta - b*theta_dot - m*theta_ddot
+
+(time mode) or a position program of tables over angle (position mode), and returns telemetry.
+Plugins are found by name through the `haptic_timeline.devices` entry point group; this module
+never imports a particular plugin.
+"""
+
+from importlib import import_module
+from typing import Any
+
+# Public names -> the submodule defining them, loaded on first use: the light ones (errors,
+# dynamics, hand, info) do not pull in numpy with the telemetry and programs.
+_EXPORTS = {
+    **dict.fromkeys(("Device", "Progress", "device_names", "open_device"), "device"),
+    **dict.fromkeys(("ACTUATOR_TYPES", "ESTIMATORS", "Actuator", "Dynamics"), "dynamics"),
+    **dict.fromkeys(("DeviceError", "HandSpecError"), "errors"),
+    **dict.fromkeys(("DEFAULT_PUSH_MNM", "DEFAULT_TURN_DEG_PER_S", "HAND_MODES", "Hand"), "hand"),
+    **dict.fromkeys(("HAND_MODELS", "HandModel"), "hand_models"),
+    **dict.fromkeys(("KINDS", "DeviceInfo"), "info"),
+    **dict.fromkeys(("CoefficientBlock", "PositionProgram", "PositionTable", "Program"), "program"),
+    **dict.fromkeys(
+        (
+            "TELEMETRY_COLUMNS",
+            "LiveTelemetry",
+            "Monitor",
+            "StabilityFlag",
+            "Telemetry",
+            "merge_flags",
+        ),
+        "telemetry",
+    ),  # fmt: skip
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'timeline.plugins.device_protocol' has no attribute {name!r}")
+    value = getattr(import_module(f"timeline.plugins.device_protocol.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+__all__ = [
+    "ACTUATOR_TYPES",
+    "DEFAULT_PUSH_MNM",
+    "DEFAULT_TURN_DEG_PER_S",
+    "HAND_MODELS",
+    "HAND_MODES",
+    "KINDS",
+    "TELEMETRY_COLUMNS",
+    "ESTIMATORS",
+    "Actuator",
+    "CoefficientBlock",
+    "Device",
+    "DeviceError",
+    "DeviceInfo",
+    "Dynamics",
+    "Hand",
+    "HandModel",
+    "HandSpecError",
+    "LiveTelemetry",
+    "Monitor",
+    "PositionProgram",
+    "PositionTable",
+    "Program",
+    "Progress",
+    "StabilityFlag",
+    "Telemetry",
+    "device_names",
+    "merge_flags",
+    "open_device",
+]

@@ -1,0 +1,80 @@
+"""The device plugin interface, and finding a plugin by name."""
+
+from __future__ import annotations
+
+import abc
+from collections.abc import Callable
+from types import TracebackType
+from typing import Any
+
+from timeline import plugins
+from timeline.plugins.device_protocol.errors import DeviceError
+from timeline.plugins.device_protocol.hand import Hand
+from timeline.plugins.device_protocol.info import DeviceInfo
+from timeline.plugins.device_protocol.program import Program
+from timeline.plugins.device_protocol.telemetry import Monitor, Telemetry
+
+Progress = Callable[[float, float | None], None]  # (seconds played, total seconds or None)
+
+
+class Device(abc.ABC):
+    """A device plugin: declares itself, opens, plays a program, reports telemetry."""
+
+    @property
+    @abc.abstractmethod
+    def info(self) -> DeviceInfo:
+        """What the device declares (rate, kind, limits)."""
+
+    def open(self) -> None:  # noqa: B027 - devices without a connection need nothing here
+        """Connect to the device (idempotent)."""
+
+    def close(self) -> None:  # noqa: B027
+        """Release the device (idempotent); the output ends at zero."""
+
+    def __enter__(self) -> Device:
+        self.open()
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    @abc.abstractmethod
+    def play(
+        self,
+        program: Program,
+        hand: Hand | None = None,
+        progress: Progress | None = None,
+        monitor: Monitor | None = None,
+    ) -> Telemetry:
+        """Play coefficient blocks (or a position program) and return what happened.
+
+        `monitor`, if given, receives each piece of telemetry as the device reports it.
+        """
+
+    @classmethod
+    def discover(cls) -> list[str]:
+        """Describe each unit of this device type that is present (empty when none)."""
+        return []
+
+
+def device_names() -> list[str]:
+    """Names of the registered device plugins."""
+    return sorted(plugins.load_group(plugins.DEVICES))
+
+
+def open_device(name: str = "sim", **options: Any) -> Device:
+    """Find a device plugin by name, construct it with options, open it and return it."""
+    cls = plugins.get(plugins.DEVICES, name)
+    try:
+        device = cls(**options)
+    except TypeError as exc:
+        if not options:
+            raise
+        raise DeviceError(f"the {name} device does not take those options ({exc})") from None
+    device.open()
+    return device

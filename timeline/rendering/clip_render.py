@@ -1,0 +1,114 @@
+"""Render one clip on an output grid: source mapping, stretch, reverse, amplitude and fades."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from timeline.model import Clip, Fade
+from timeline.signal.fades import fade_envelope
+from timeline.signal.render_presets import QualityPreset
+from timeline.tiles import Tile
+
+NO_FADE = Fade()
+
+
+def clip_sample_range(clip: Clip, t0: float, rate: float, n: int) -> tuple[int, int]:
+    """Indices [i0, i1) of the grid t0 + i/rate (i < n) that fall inside the clip's [start, end)."""
+    i0 = math.ceil((clip.start - t0) * rate - 1e-9)
+    i1 = math.ceil((clip.end - t0) * rate - 1e-9)
+    return max(i0, 0), min(max(i1, 0), n)
+
+
+def render_clip(
+    clip: Clip, tile: Tile, t_first: float, rate: float, n: int, quality: QualityPreset
+) -> np.ndarray:
+    """The clip's values in tile units at t_first + i/rate for i < n (all inside the clip)."""
+    return render_shape(clip, tile, t_first - clip.start, rate, n, quality, clip.gain)
+
+
+def render_shape(
+    clip: Clip,
+    tile: Tile,
+    pos0: float,
+    rate: float,
+    n: int,
+    quality: QualityPreset,
+    gain: float = 1.0,
+) -> np.ndarray:
+    """The clip's values times gain at offsets pos0 + i/rate into the clip (its start ignored).
+
+    The mixer renders shapes with gain 1 and weights them when it adds them.
+    """
+    if n <= 0:
+        return np.zeros(0)
+    values = _source_values(clip, tile, pos0, 1.0 / rate, n, quality)
+    if not values.flags.writeable:
+        values = values.copy()
+    # Overflow shows as inf, which the mixer reports as one clear error.
+    with np.errstate(over="ignore", invalid="ignore"):
+        if clip.scale != 1.0:
+            values *= clip.scale
+        if clip.offset != 0.0:
+            values += clip.offset
+        if gain != 1.0:
+            values *= gain
+        _apply_fades(values, clip, pos0, rate)
+    return values
+
+
+def _apply_fades(values: np.ndarray, clip: Clip, pos0: float, rate: float) -> None:
+    """Multiply by the fade gains where they are not exactly 1 (the fade spans, plus a sample).
+
+    Past a fade's span its gain is exactly 1.0 for every shape, so leaving those samples alone
+    gives the same bits as multiplying the whole clip, at the cost of the fades alone.
+    """
+    fade_in, fade_out = clip.fade_in, clip.fade_out
+    if fade_in.length <= 0 and fade_out.length <= 0:
+        return
+    n = len(values)
+    a = min(n, max(0, math.ceil((fade_in.length - pos0) * rate) + 1)) if fade_in.length > 0 else 0
+    z = n
+    if fade_out.length > 0:
+        z = min(n, max(0, math.floor((clip.duration - fade_out.length - pos0) * rate) - 1))
+    spans = [(0, n)] if z <= a else [(0, a), (z, n)]
+    for lo, hi in spans:
+        if hi > lo:
+            pos = pos0 + np.arange(lo, hi) / rate
+            # a fade whose gain is exactly 1 over the whole span (its x >= 1 at the span's end
+            # nearest it: x is monotone in pos) is left out, with the same bits
+            fi = fade_in if fade_in.length > 0 and pos[0] / fade_in.length < 1.0 else NO_FADE
+            ends = clip.duration - pos[-1]
+            fo = fade_out if fade_out.length > 0 and ends / fade_out.length < 1.0 else NO_FADE
+            if fi.length > 0 or fo.length > 0:
+                values[lo:hi] *= fade_envelope(pos, clip.duration, fi, fo)
+
+
+def _source_values(
+    clip: Clip, tile: Tile, pos0: float, dt: float, n: int, quality: QualityPreset
+) -> np.ndarray:
+    """Tile values for clip offsets pos0 + i*dt, following stretch mode and reversal."""
+    if clip.stretch_mode == "squeeze":
+        return _mapped(clip, tile, pos0 / clip.stretch, dt / clip.stretch, n, quality)
+    # repeat: the source loops at its own speed; render each pass through the loop separately.
+    length = clip.source_length
+    out = np.empty(n)
+    i = 0
+    while i < n:
+        x = math.fmod(pos0 + i * dt + clip.loop_phase, length)
+        remaining = math.ceil((length - x) / dt - 1e-9)
+        count = max(1, min(n - i, remaining))
+        out[i : i + count] = _mapped(clip, tile, x, dt, count, quality)
+        i += count
+    return out
+
+
+def _mapped(
+    clip: Clip, tile: Tile, x0: float, dx: float, n: int, quality: QualityPreset
+) -> np.ndarray:
+    """Tile values at source offsets x0 + i*dx from source_in (mirrored when reversed)."""
+    if clip.reverse:
+        u0 = clip.source_out - tile.reverse_shift - x0
+        return tile.render(u0, -dx, n, quality)
+    return tile.render(clip.source_in + x0, dx, n, quality)
