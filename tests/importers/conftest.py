@@ -6,21 +6,14 @@ from pathlib import Path
 
 import pytest
 
+from tests.corpus import ABSENT, corpus_dir
 
-def _find_corpus() -> Path:
-    """../shared/corpus beside the repository (or beside the folder of git worktrees)."""
-    for folder in Path(__file__).resolve().parents[2:]:
-        if (folder / "shared" / "corpus").is_dir():
-            return folder / "shared" / "corpus"
-    return Path(__file__).resolve().parents[3] / "shared" / "corpus"
-
-
-CORPUS = _find_corpus()
+CORPUS = corpus_dir()
 
 
 @pytest.fixture
 def corpus() -> Path:
     """The shared corpus of files made by other tools (skips when absent)."""
-    if not CORPUS.is_dir():
-        pytest.skip("the shared corpus is not present")
+    if CORPUS is None:
+        pytest.skip(ABSENT)
     return CORPUS

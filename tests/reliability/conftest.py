@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 import soundfile as sf
 
+from tests.corpus import DATA, corpus_dir
 from timeline.files import projectfile
 from timeline.files.exporting import export_project
 
@@ -24,15 +25,6 @@ SCALE = max(1, int(os.environ.get("RELIABILITY_SCALE", "1")))
 def count(n: int) -> int:
     """A test's example or loop count, scaled by RELIABILITY_SCALE."""
     return n * SCALE
-
-
-def corpus_dir() -> Path | None:
-    """The shared corpus beside the repository (main's checkout or a worktree), if present."""
-    for parent in ROOT.parents:
-        candidate = parent / "shared" / "corpus"
-        if candidate.is_dir():
-            return candidate
-    return None
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
@@ -49,13 +41,16 @@ def example_project():
 
 def seed_files(folder: Path) -> dict[str, list[Path]]:
     """Real files of every readable format, to mutate: corpus files where the corpus has them,
-    small files written by our own writers or by soundfile for the rest."""
+    the hand-written .haptic and AHAP files of tests/data, and small files written by our own
+    writers or by soundfile for the rest."""
     seeds: dict[str, list[Path]] = {"htl": sorted(PROJECTS.glob("*.htl"))}
     corpus = corpus_dir()
     if corpus is not None:
         seeds["ahap"] = sorted(corpus.rglob("*.ahap"))[:6]
         seeds["haptic"] = sorted(corpus.rglob("*.haptic"), key=lambda p: p.stat().st_size)[:6]
         seeds["wav"] = sorted(corpus.rglob("*.wav"), key=lambda p: p.stat().st_size)[:2]
+    for ext in ("ahap", "haptic"):
+        seeds.setdefault(ext, []).extend(sorted(DATA.glob(f"*.{ext}")))
     tone = 0.4 * np.sin(2 * np.pi * 40 * np.arange(400) / 8000)
     for ext, subtype in (("flac", "PCM_16"), ("aiff", "PCM_16"), ("wav", "PCM_16")):
         path = folder / f"tone.{ext}"
