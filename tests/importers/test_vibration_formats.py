@@ -12,12 +12,18 @@ import pytest
 from importers import ahap
 from timeline import edits
 from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, place_design
-from timeline.files import exporting, importing
+from timeline.files import importing
 from timeline.plugins.file_formats import FormatError
 from timeline.tiles import generator
 
-AHAP_AMPLITUDE_BOUND = 0.03  # .haptic -> AHAP -> design, away from steps (measured 0.010)
-META_AHAP_BOUND = 0.02  # Meta-made AHAP -> import -> export: control values (measured < 1e-4)
+from .vibration_checks import (
+    check_ahap_round_trip,
+    check_envelopes_kept_through_ahap,
+    check_written_back_exactly,
+)
+from .vibration_checks import export_doc as _export
+from .vibration_checks import player as _player
+from .vibration_checks import read_project as _read
 
 REJECTED = {
     "invalid_fields_v1.haptic": "no signals",
@@ -31,16 +37,6 @@ REJECTED = {
     "truncate_before_1_bp.haptic": "has one breakpoint; it needs at least two",
     "invalid_fields.ahap": "not an Event",
 }
-
-
-def _read(path: Path):
-    project, _ = importing.import_file(edits.new_project(templates=False), path)
-    return project
-
-
-def _export(project, path: Path) -> dict:
-    exporting.export_project(project, path)
-    return json.loads(path.read_text())
 
 
 def _haptic_doc(amplitude, frequency=None) -> dict:
@@ -63,34 +59,6 @@ def _valid(corpus: Path, pattern: str) -> list[Path]:
     return [p for p in sorted(corpus.glob(pattern)) if p.name not in REJECTED]
 
 
-def _away_from_steps(design: VibrationDesign, grid: np.ndarray) -> np.ndarray:
-    steps = [
-        a for (a, _), (b, _) in zip(design.amplitude, design.amplitude[1:], strict=False) if a == b
-    ]
-    keep = np.ones(len(grid), dtype=bool)
-    for s in steps:
-        keep &= np.abs(grid - s) > 0.002
-    return keep
-
-
-def _player(path: Path) -> tuple[dict, list, list]:
-    """An AHAP's control curves as the player follows them, its control points and transients."""
-    doc = json.loads(path.read_text())
-    events, controls, _ = ahap._entries(doc["Pattern"], path.name)
-    curves = {}
-    for pid, default in (("HapticIntensityControl", 1.0), ("HapticSharpnessControl", 0.0)):
-        control = ahap._Control(default)
-        for _, start, points in sorted((c for c in controls if c[0] == pid), key=lambda c: c[1]):
-            control.set_from(start, points)
-        curves[pid] = control.freeze()
-    transients = sorted(
-        (e["time"], e["intensity"], e["sharpness"])
-        for e in events
-        if e["type"] == "HapticTransient"
-    )
-    return curves, controls, transients
-
-
 # --- the corpus ---------------------------------------------------------------------------------
 
 
@@ -109,60 +77,17 @@ def test_an_unedited_haptic_is_written_back_exactly(corpus, tmp_path):
     files = _valid(corpus, "*/*.haptic")
     assert len(files) > 50
     for path in files:
-        source = json.loads(path.read_text())["signals"]["continuous"]["envelopes"]
-        written = _export(_read(path), tmp_path / "out.haptic")["signals"]["continuous"]
-        amp0, amp1 = source["amplitude"], written["envelopes"]["amplitude"]
-        assert len(amp1) == len(amp0), path.name  # within 5 %: the same count
-        for b0, b1 in zip(amp0, amp1, strict=True):
-            assert b1["time"] == b0["time"] and abs(b1["amplitude"] - b0["amplitude"]) <= 0.005
-            if "emphasis" in b0:
-                e0, e1 = b0["emphasis"], b1["emphasis"]
-                assert e1["frequency"] == e0["frequency"], path.name
-                assert e1["amplitude"] == max(e0["amplitude"], b0["amplitude"]), path.name
-        assert written["envelopes"].get("frequency", []) == [
-            {"time": b["time"], "frequency": b["frequency"]} for b in source.get("frequency", [])
-        ], path.name
+        check_written_back_exactly(path, tmp_path)
 
 
 def test_haptic_to_ahap_and_back_keeps_the_envelopes(corpus, tmp_path):
     for path in _valid(corpus, "*/*.haptic"):
-        design = design_of(_read(path))
-        _export(_read(path), tmp_path / "out.ahap")
-        back = design_of(_read(tmp_path / "out.ahap"))
-        grid = np.linspace(design.amplitude[0][0], design.amplitude[-1][0], 20_001)
-        keep = _away_from_steps(design, grid)
-        amp_error = np.abs(design.amplitude_at(grid) - back.amplitude_at(grid))[keep].max()
-        assert amp_error <= AHAP_AMPLITUDE_BOUND, path.name
-        if design.frequency:
-            f_error = np.abs(design.frequency_at(grid) - back.frequency_at(grid))[keep].max()
-            assert f_error <= AHAP_AMPLITUDE_BOUND, path.name
-        assert [(e.time, e.frequency) for e in back.emphasis] == [
-            (e.time, e.frequency) for e in design.emphasis
-        ]
-        assert all(
-            abs(a.amplitude - b.amplitude) < 1e-9
-            for a, b in zip(design.emphasis, back.emphasis, strict=True)
-        )
+        check_envelopes_kept_through_ahap(path, tmp_path)
 
 
 def test_meta_made_ahap_round_trips_within_the_bound(corpus, tmp_path):
     for path in _valid(corpus, "ahap/*.ahap"):
-        exported = tmp_path / "out.ahap"
-        _export(_read(path), exported)
-        before, controls, transients = _player(path)
-        after, _, transients_after = _player(exported)
-        assert np.allclose(transients, transients_after, atol=1e-12), path.name
-        for pid, curve in before.items():
-            times = [t for c in controls if c[0] == pid for t, _ in c[2]]
-            has_continuous = any(
-                "Event" in p and p["Event"]["EventType"] == "HapticContinuous"
-                for p in json.loads(path.read_text())["Pattern"]
-            )
-            if not times or not has_continuous:
-                continue  # controls without continuous events change nothing
-            grid = np.linspace(min(times), max(times), 5001)
-            error = np.abs(curve.at(grid) - after[pid].at(grid)).max()
-            assert error <= META_AHAP_BOUND, (path.name, pid, error)
+        check_ahap_round_trip(path, tmp_path)
 
 
 def test_meta_converter_sharpness_and_ducking_are_read_back(corpus):
