@@ -21,6 +21,8 @@ from timeline.signal.render_presets import PRESETS, QualityPreset
 from timeline.signal.samples import content_key
 from timeline.tiles import SampledTile
 
+from .hand_wav import MONO, MONO_VALUES, STEREO, STEREO_VALUES, write_wav
+
 RNG = np.random.default_rng(11)
 CUBIC = QualityPreset("cubic", "linear", "cubic", 1, "float64")
 
@@ -159,6 +161,14 @@ def test_corpus_recordings_are_stored_exactly(corpus):
         tile = audio.FORMAT.read(path)
         assert tile.data.dtype == np.float32, path.name
         np.testing.assert_array_equal(tile.data.astype(np.float64), _expected(path, None))
+
+
+@pytest.mark.parametrize(("frames", "values"), [(MONO, MONO_VALUES), (STEREO, STEREO_VALUES)])
+def test_a_wav_built_by_hand_is_stored_as_its_samples_over_32768(tmp_path, frames, values):
+    """The corpus test's claim on a file no audio library wrote: values known without one."""
+    tile = audio.FORMAT.read(write_wav(tmp_path / "hand.wav", frames))
+    assert tile.data.dtype == np.float32 and tile.rate == 44_100
+    assert tile.data.astype(np.float64).tolist() == values
 
 
 @pytest.mark.parametrize("container", ["FLAC", "AIFF", "WAV"])

@@ -11,6 +11,8 @@ from timeline.model import Fade
 from timeline.plugins.file_formats import FormatError
 from timeline.tiles import SampledTile, generator
 
+from .hand_wav import STEREO, STEREO_VALUES, write_wav
+
 
 def test_otio_round_trip_keeps_clips_exactly(tmp_path):
     project = edits.new_project()
@@ -58,3 +60,8 @@ def test_corpus_recordings_import(corpus):
     for wav in sorted((corpus / "audio-pairs").glob("*.wav")):
         tile = importing.read_file(wav).placements[0].tile
         assert tile.rate > 0 and len(tile.data) > 100 and np.abs(tile.data).max() <= 1.0
+
+
+def test_a_wav_built_by_hand_imports_as_its_samples(tmp_path):
+    tile = importing.read_file(write_wav(tmp_path / "hand.wav", STEREO)).placements[0].tile
+    assert tile.rate == 44_100 and tile.data.tolist() == STEREO_VALUES
