@@ -6,13 +6,13 @@ and correct the prediction with the encoder reading (current-estimator form,
 x = A x + L (reading - (A x)[0])). They differ in the gain L:
 
 * `kalman` (the default estimator): the steady-state Kalman gain for that model, with the
-  reading's noise the encoder's quantisation (sigma_theta = quantum/sqrt(12), REFERENCE.md) and
-  the acceleration a random walk whose step per period is chosen from the same quantisation:
-  the largest step for which the acceleration estimate's noise (white quantisation noise
-  through the observer, computed from its matrices) is `noise` times the noise of a raw
-  3-point difference (REFERENCE.md: 1.23e3 rad/s^2 at the paper's encoder). Both covariances
-  scale with the quantum, so L depends only on that fraction, and an ideal sensor gets the
-  same firmware.
+  reading's noise the encoder's quantisation (sigma_theta = quantum/sqrt(12),
+  docs/references.md) and the acceleration a random walk whose step per period is chosen from
+  the same quantisation: the largest step for which the acceleration estimate's noise (white
+  quantisation noise through the observer, computed from its matrices) is `noise` times the
+  noise of a raw 3-point difference (docs/references.md: 1.23e3 rad/s^2 at the paper's
+  encoder). Both covariances scale with the quantum, so L depends only on that fraction, and an
+  ideal sensor gets the same firmware.
 * `tracking`: all three poles of (I - L C) A at exp(-2*pi*bandwidth*T) (Ackermann's formula).
 
 Neither needs the rotor or the hand. A rotor-model observer that feeds the commanded torque

@@ -92,9 +92,9 @@ def test_the_kalman_observer_is_the_default_and_beats_the_filter_on_gain_phase_a
 
 
 def test_the_kalman_gain_is_set_by_the_noise_budget_from_the_quantisation() -> None:
-    sigma = np.radians(0.001) / np.sqrt(12.0)  # REFERENCE.md: 5.04e-6 rad
+    sigma = np.radians(0.001) / np.sqrt(12.0)  # docs/references.md: 5.04e-6 rad
     raw = observer.raw_acceleration_noise(1e-4, sigma)
-    assert raw == pytest.approx(1.23e3, rel=0.01)  # REFERENCE.md's 3-point figure
+    assert raw == pytest.approx(1.23e3, rel=0.01)  # docs/references.md's 3-point figure
     for budget in (0.01, 0.02, 0.05):
         gains = observer.kalman_gains(1e-4, budget)
         assert observer.acceleration_noise(1e-4, gains, sigma) == pytest.approx(budget * raw)

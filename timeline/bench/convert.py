@@ -33,7 +33,8 @@ from timeline.bench.report import Table, best_cpu_time, best_time, figure, save
 
 NAME = "convert"
 SUMMARY = "audio-to-haptic analysis: agreement with Lofelt Studio's (corpus pairs) and speed"
-# the shared corpus beside the checkout (../shared), or beside its worktree folder (../../shared)
+# the test corpus (docs/references.md) is not in the repository: it is looked for in a folder
+# named `shared` beside the checkout, or beside the checkout's worktree folder
 _ROOT = Path(__file__).resolve().parents[2]
 PAIRS = (
     next(

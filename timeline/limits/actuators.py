@@ -1,8 +1,8 @@
 """Named actuator profiles and the `--actuator` spelling (`lra:F0[:Q]`, `voice-coil:LOW-HIGH`).
 
 The named profiles are typical parts, not a particular datasheet: an LRA at 175 Hz with Q 10
-(REFERENCE.md: -3 dB band ~17.5 Hz, ring-down ~18 ms) and a wideband voice coil (tactors driven
-from an audio amplifier, Syntacts' approach). Peak accelerations are typical values at full
+(docs/references.md: -3 dB band ~17.5 Hz, ring-down ~18 ms) and a wideband voice coil (tactors
+driven from an audio amplifier, Syntacts' approach). Peak accelerations are typical values at full
 scale on a hand-held mass; replace them with your part's datasheet numbers.
 """
 
