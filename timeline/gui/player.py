@@ -24,13 +24,14 @@ from timeline.plugins.device_protocol import Device, Hand, LiveTelemetry, device
 from timeline.rendering import playback
 from timeline.rendering.sound_out import SoundOut
 
+from .job_errors import unexpected
 from .live_stream import LiveStream, LiveTables
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
 
 
-class _Stopped(HapticTimelineError):
-    """Stop was pressed during a position sweep."""
+class _Stopped(Exception):
+    """Stop was pressed during a position sweep (control flow, not a user error)."""
 
 
 class Player(QObject):
@@ -139,6 +140,9 @@ class Player(QObject):
             pass
         except HapticTimelineError as exc:
             self._outcome = str(exc)
+            return
+        except Exception as exc:  # noqa: BLE001 - a bug must still end the play, and say so
+            self._outcome = unexpected("Playing", exc)
             return
         self._outcome = ""
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from dataclasses import fields
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QEvent, QObject, Qt, Signal
 from PySide6.QtWidgets import (
@@ -22,7 +23,6 @@ from PySide6.QtWidgets import (
     QFileDialog,
     QFormLayout,
     QLabel,
-    QMainWindow,
     QMenu,
     QPushButton,
     QScrollArea,
@@ -36,6 +36,9 @@ from timeline.edits.placement import into_gap
 from timeline.errors import HapticTimelineError
 from timeline.files.convert import ConvertedSound, analyse_sound_file, place_converted
 from timeline.gui.file_jobs import FileJob
+
+if TYPE_CHECKING:
+    from timeline.gui.main_window import MainWindow
 
 SOUND_EXTENSIONS = "*.wav *.flac *.ogg *.aif *.aiff *.mp3 *.opus"
 DROP_MODIFIER = Qt.KeyboardModifier.AltModifier
@@ -163,7 +166,7 @@ class AnalysisPanel(QWidget):
 class SoundImport(QObject):
     """The editor's sound-to-haptic command: menu actions, the settings dock and the jobs."""
 
-    def __init__(self, window: QMainWindow) -> None:
+    def __init__(self, window: MainWindow) -> None:
         super().__init__(window)
         self.window = window
         self.panel = AnalysisPanel()
@@ -218,16 +221,14 @@ class SoundImport(QObject):
             return
         for path in paths:
             job = FileJob(
-                lambda progress, p=path: analyse_sound_file(p, settings, progress=progress)
+                f"Import of {path.name} as haptic",
+                lambda progress, p=path: analyse_sound_file(p, settings, progress=progress),
             )
-            job.done.connect(lambda found, j=job: self._analysed(j, found, track_id, at))
-            self.window._start(job, f"analysing {path.name}…")
+            self.window.run_job(
+                job, f"analysing {path.name}…", lambda found: self._analysed(found, track_id, at)
+            )
 
-    def _analysed(self, job: FileJob, found: ConvertedSound, track_id: str, at: float) -> None:
-        self.window._finish(job)
-        if job.cancelled:
-            self.window.messages.show_message("import cancelled; nothing was changed")
-            return
+    def _analysed(self, found: ConvertedSound, track_id: str, at: float) -> None:
         doc = self.window.doc
         drive = next((t.id for t in doc.project.tracks if t.id == track_id and t.kind == "drive"),
                      None)  # fmt: skip
