@@ -188,7 +188,7 @@ class FindingsOverlay(QObject):
         for shade in self.shades:
             scene.removeItem(shade)
         self.shades = []
-        geometry = scene.geometry
+        geometry = scene.lane_geometry
         terms = [track_kind(t.kind).term for t in project.tracks]
         for finding in report.findings:
             layer = LAYER_OF.get(finding.layer, finding.layer)

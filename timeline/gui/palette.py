@@ -70,16 +70,18 @@ class TileList(QListWidget):
 
     def fit_grid(self) -> None:
         """Use the largest thumbnails with which every tile fits without scrolling."""
-        room = self.contentsRect()
-        width = room.width() - self.verticalScrollBar().sizeHint().width()  # as if it showed
-        for scale in SCALES:
-            cell_w = round(SIZE[0] * scale) + LABEL_ROOM[0]
-            cell_h = round(SIZE[1] * scale) + LABEL_ROOM[1]
-            columns = max(1, width // cell_w)
-            if math.ceil(self.count() / columns) * cell_h <= room.height():
-                break
+        scale = next((s for s in SCALES if self._fits(s)), SCALES[-1])  # smallest if none fits
         if scale != self.scale:
             self._set_scale(scale)
+
+    def _fits(self, scale: float) -> bool:
+        """Whether every tile shows without scrolling at this thumbnail scale."""
+        room = self.contentsRect()
+        width = room.width() - self.verticalScrollBar().sizeHint().width()  # as if it showed
+        cell_w = round(SIZE[0] * scale) + LABEL_ROOM[0]
+        cell_h = round(SIZE[1] * scale) + LABEL_ROOM[1]
+        columns = max(1, width // cell_w)
+        return math.ceil(self.count() / columns) * cell_h <= room.height()
 
     def resizeEvent(self, event) -> None:
         super().resizeEvent(event)

@@ -52,7 +52,7 @@ class TimelineScene(QGraphicsScene):
 
     def __init__(self, geometry: Geometry) -> None:
         super().__init__()
-        self.geometry = geometry
+        self.lane_geometry = geometry
         self.items_by_clip: dict[str, ClipItem] = {}
         self._shown: dict[str, _TrackShown] = {}  # track id -> what its items show
         self._tiles: object = None  # the tile library the items were last updated from
@@ -78,7 +78,7 @@ class TimelineScene(QGraphicsScene):
         same; its items are then left alone, so a drag on 20,000 clips updates a few items.
         """
         self.project, self.selection = project, set(selection)
-        view = (self.geometry.px_per_unit, self.geometry.lane_height, project.rate)
+        view = (self.lane_geometry.px_per_unit, self.lane_geometry.lane_height, project.rate)
         # edits that leave the tile library alone share its map, so its tiles need no check
         tiles = None if project.tiles is self._tiles else project.tiles
         self._tiles = project.tiles
@@ -134,7 +134,7 @@ class TimelineScene(QGraphicsScene):
                 continue
             item = self.items_by_clip.get(clip.id)
             if item is None:
-                item = self.items_by_clip[clip.id] = ClipItem(self.geometry)
+                item = self.items_by_clip[clip.id] = ClipItem(self.lane_geometry)
                 self.addItem(item)
             tile = tiles.get(clip.tile_id)
             if tile is None:
@@ -163,7 +163,7 @@ class TimelineScene(QGraphicsScene):
 
     def refit(self) -> None:
         """Size the scene to the lanes and the project (plus room to drag past the end)."""
-        g = self.geometry
+        g = self.lane_geometry
         lanes = len(self.project.tracks) if self.project else 0
         width = max(
             self.min_width, g.x((self.project.duration if self.project else 0) * 1.25) + 200
@@ -177,17 +177,17 @@ class TimelineScene(QGraphicsScene):
     def set_playhead(self, u: float) -> None:
         """Move the playhead line."""
         self.playhead_u = u
-        x = self.geometry.x(u)
+        x = self.lane_geometry.x(u)
         self.playhead.setLine(QLineF(x, 0, x, self.sceneRect().height()))
 
     def set_cursor(self, u: float) -> None:
         """Move the edit cursor (where split cuts)."""
         self.cursor_u = u
-        x = self.geometry.x(u)
+        x = self.lane_geometry.x(u)
         self.cursor.setLine(QLineF(x, 0, x, self.sceneRect().height()))
 
     def drawBackground(self, painter: QPainter, rect: QRectF) -> None:
-        g = self.geometry
+        g = self.lane_geometry
         lanes = len(self.project.tracks) if self.project else 0
         painter.fillRect(rect, QColor("#d9d9d6"))
         for lane in range(lanes):
@@ -214,4 +214,4 @@ class TimelineScene(QGraphicsScene):
     def grid_step(self) -> float:
         """The grid spacing in axis units at the current zoom (what snapping lands on)."""
         factor = display_factor(self.project.axis if self.project else "time")
-        return nice_step(self.geometry.px_per_unit / factor) / factor / 4
+        return nice_step(self.lane_geometry.px_per_unit / factor) / factor / 4
