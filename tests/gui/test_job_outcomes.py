@@ -1,7 +1,9 @@
-"""Every background job ends in exactly one of done, failed or cancelled, and leaves the list."""
+"""Every background job ends in exactly one of done, failed or cancelled, and leaves the list;
+a failed autosave says so."""
 
 from __future__ import annotations
 
+import errno
 import threading
 from pathlib import Path
 
@@ -10,9 +12,10 @@ import pytest
 import soundfile
 from PySide6.QtCore import QCoreApplication, Qt
 from PySide6.QtTest import QTest
-from PySide6.QtWidgets import QFileDialog
+from PySide6.QtWidgets import QApplication, QFileDialog
 
 from timeline.files import importing
+from timeline.gui import autosave
 from timeline.gui.file_jobs import FileJob
 
 IMPORT_KEYS = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
@@ -97,6 +100,7 @@ def test_cancelling_an_import_with_the_cancel_button_says_cancelled_not_an_error
         return real_read(path, progress=report, **options)
 
     monkeypatch.setattr(importing, "read_file", read_held_after_the_first_block)
+    win.view.setFocus()
     job = import_by_command(win, monkeypatch, long_wav)
     heard = outcomes_of(job)
     assert first_block.wait(20)
@@ -111,6 +115,7 @@ def test_cancelling_an_import_with_the_cancel_button_says_cancelled_not_an_error
     assert not [text for text, level in win.messages.history if level == "error"]
     assert not win.messages.progress.isVisible()
     assert win.doc.project is before
+    assert QApplication.focusWidget() is win.view  # not the next widget in the focus chain
 
 
 def test_a_normal_import_ends_in_done_and_lands_as_one_step(window, qtbot, monkeypatch, long_wav):
@@ -149,3 +154,40 @@ def test_a_cancel_after_the_last_report_still_cancels_and_discards_the_result(qt
     ended(job)
     assert heard == [("cancelled",)]
     assert discarded == ["temporary file"]
+
+
+def test_an_autosave_that_cannot_write_says_so_and_the_next_change_autosaves(
+    window, qtbot, monkeypatch
+):
+    win = window
+    real_save = autosave.projectfile.save
+
+    def full_disk(project, path):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(autosave.projectfile, "save", full_disk)
+    win.autosaver.timer.setInterval(50)
+    win.doc.select_clips([win.ids["c1"]])
+    with qtbot.waitSignal(win.autosaver.failed, timeout=10_000) as blocker:
+        win.reverse()
+    assert blocker.args == ["Autosave failed: No space left on device"]
+    assert win.messages.history[-1] == ("Autosave failed: No space left on device", "error")
+    assert not win.autosaver.path.exists()
+    monkeypatch.setattr(autosave.projectfile, "save", real_save)
+    win.reverse()
+    qtbot.waitUntil(win.autosaver.path.exists, timeout=10_000)
+
+
+def test_a_cancel_clicked_before_the_window_heard_the_end_still_cancels(qtbot):
+    discarded: list[str] = []
+    job = FileJob("Export of out.wav", lambda progress: "temporary file", discard=discarded.append)
+    heard = outcomes_of(job)
+    job.start()
+    job.worker_thread.join(20)  # the work has returned; its end waits for the GUI thread
+    job.cancel()
+    QCoreApplication.processEvents()
+    assert heard == [("cancelled",)]
+    assert discarded == ["temporary file"]
+    job.cancel()  # once decided, a late Cancel changes nothing
+    QCoreApplication.processEvents()
+    assert heard == [("cancelled",)]

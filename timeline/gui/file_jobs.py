@@ -37,14 +37,16 @@ class JobCancelled(Exception):
 class FileJob(QObject):
     """Runs one read or write off the GUI thread and ends in exactly one of three signals.
 
-    `what` names the job in its messages ("Import of x.wav"). `discard` tidies up a result that
-    arrives after the user cancelled (an export's temporary file).
+    `what` names the job in its messages ("Import of x.wav"). The outcome is decided on the GUI
+    thread when the work has ended, so a Cancel clicked while the job is still listed cancels it;
+    `discard` tidies up a result that arrived anyway (an export's temporary file).
     """
 
     progress = Signal(float)
     done = Signal(object)
     failed = Signal(str)
     cancelled = Signal()
+    _ended = Signal(object, object)  # the work's result or the exception it raised
 
     def __init__(self, what: str, work: Work, discard: Callable[[Any], None] | None = None) -> None:
         super().__init__()
@@ -52,8 +54,8 @@ class FileJob(QObject):
         self._work = work
         self._discard = discard
         self._cancel = threading.Event()
-        self._decided = threading.Lock()  # cancel() and the outcome: one wins
-        self._ended = False
+        self._over = False
+        self._ended.connect(self._decide)  # queued: runs on the GUI thread
         self.worker_thread = threading.Thread(target=self._run, name=what, daemon=True)
 
     def start(self) -> None:
@@ -61,36 +63,33 @@ class FileJob(QObject):
 
     def cancel(self) -> None:
         """Ask the job to stop at its next progress report (no effect once it has ended)."""
-        with self._decided:
-            if not self._ended:
-                self._cancel.set()
+        if not self._over:
+            self._cancel.set()
 
     def _report(self, fraction: float) -> None:
         if self._cancel.is_set():
             raise JobCancelled
         self.progress.emit(float(fraction))
 
-    def _end(self) -> bool:
-        """Decide the outcome: True if the user cancelled before the work ended."""
-        with self._decided:
-            self._ended = True
-            return self._cancel.is_set()
-
     def _run(self) -> None:
         try:
             result = self._work(self._report)
         except Exception as exc:  # noqa: BLE001 - every error ends the job as failed or cancelled
-            if self._end():
-                self.cancelled.emit()  # whatever the work raised on its way out
-            else:
-                self.failed.emit(self._message(exc))
-            return
-        if self._end():
+            self._ended.emit(None, exc)
+        else:
+            self._ended.emit(result, None)
+
+    def _decide(self, result: Any, error: Exception | None) -> None:
+        """GUI thread: one outcome, cancelled if the user asked before it was decided."""
+        self._over = True
+        if self._cancel.is_set():
             try:
-                if self._discard is not None:
+                if error is None and self._discard is not None:
                     self._discard(result)
             finally:
-                self.cancelled.emit()
+                self.cancelled.emit()  # whatever the work raised on its way out
+        elif error is not None:
+            self.failed.emit(self._message(error))
         else:
             self.done.emit(result)
 

@@ -69,6 +69,7 @@ class MainWindow(QMainWindow):
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self._build()
         self.autosaver = Autosaver(self.doc)
+        self.autosaver.failed.connect(lambda text: self.messages.show_message(text, "error"))
         self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
         self.rendered_action = self.findings.rendered.add_action(
             self.view_menu, self.findings.show_rendered
