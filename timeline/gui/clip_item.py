@@ -32,11 +32,11 @@ def value_offset(value: float, height: float) -> float:
 class ClipItem(QGraphicsItem):
     """Draws one clip; the view decides what a mouse press on it means (see `zone`)."""
 
-    def __init__(self, geometry: Geometry) -> None:
+    def __init__(self, geometry: Geometry, clip: Clip, tile: Tile) -> None:
         super().__init__()
         self.lane_geometry = geometry
-        self.clip: Clip | None = None
-        self.tile: Tile | None = None
+        self.clip = clip  # shown once update_from has placed it
+        self.tile = tile
         self.colour = QColor("#888888")
         self.rate = 10_000.0
         self.selected = False
@@ -45,7 +45,7 @@ class ClipItem(QGraphicsItem):
         self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
         self._w = 1.0
         self._h = 1.0
-        self._key: tuple = ()
+        self._key: tuple[object, ...] = ()
         self.muted = False
         self.covered: tuple[tuple[float, float], ...] = ()
 

@@ -146,7 +146,12 @@ class MainWindow(QMainWindow):
         self._menus()
 
     def _action(
-        self, menu: QMenu, text: str, slot, shortcut: str | QKeySequence = "", tip: str = ""
+        self,
+        menu: QMenu,
+        text: str,
+        slot: Callable[[], object],
+        shortcut: str | QKeySequence | QKeySequence.StandardKey = "",
+        tip: str = "",
     ) -> QAction:
         action = QAction(text, self)
         if shortcut:

@@ -87,7 +87,8 @@ class TileList(QListWidget):
         super().resizeEvent(event)
         self.fit_grid()
 
-    def mimeData(self, items):  # noqa: N802 - Qt override
+    # Qt takes a null QMimeData (None) as "nothing to drag"; the stubs do not allow it
+    def mimeData(self, items):  # noqa: N802  # pyright: ignore[reportIncompatibleMethodOverride]
         return tile_mime(items[0].data(Qt.ItemDataRole.UserRole)) if items else None
 
     def dragEnterEvent(self, event) -> None:
@@ -152,7 +153,7 @@ class Palette(QWidget):
         layout.addWidget(self.tabs, 1)
         layout.addLayout(tabs_row)
         layout.addLayout(tiles_row)
-        self._shown: tuple = ()
+        self._shown: tuple[object, ...] = ()
         self._icons: dict[tuple[str, int], QIcon] = {}
         doc.changed.connect(self.refresh)
         self.refresh()
@@ -162,8 +163,9 @@ class Palette(QWidget):
 
     def tile_list(self, tab: str) -> TileList:
         for i in range(self.tabs.count()):
-            if self.tabs.tabText(i) == tab:
-                return self.tabs.widget(i)
+            tiles = self.tabs.widget(i)
+            if self.tabs.tabText(i) == tab and isinstance(tiles, TileList):
+                return tiles
         raise KeyError(tab)
 
     def refresh(self) -> None:
@@ -178,7 +180,8 @@ class Palette(QWidget):
         while self.tabs.count():
             widget = self.tabs.widget(0)
             self.tabs.removeTab(0)
-            widget.deleteLater()
+            if widget is not None:
+                widget.deleteLater()
         for tab in project.palette:
             tiles = TileList()
             tiles.range_dropped.connect(

@@ -106,6 +106,7 @@ class Player(QObject):
         try:
             device = self._open()
             self.stream = self.tables = None
+            stop = project.duration if stop is None else stop
             if project.axis == "position":
                 hand = self.hand
                 duration = None if hand.turn_speed else HOLD_SECONDS
@@ -113,7 +114,6 @@ class Player(QObject):
                 self.tables = LiveTables(sweep)
                 program, self._origin = self.tables.program, sweep.origin
             else:
-                stop = project.duration if stop is None else stop
                 if stop <= start:
                     raise HapticTimelineError("nothing to play: the project has no clips there")
                 self.stream = LiveStream(project, device.info.rate, start, stop, loop, tracks)

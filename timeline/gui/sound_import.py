@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QEvent, QObject, Qt, Signal
+from PySide6.QtGui import QDropEvent
 from PySide6.QtWidgets import (
     QCheckBox,
     QDockWidget,
@@ -77,6 +78,9 @@ LABELS = {
 }  # fmt: skip
 
 
+Field = QCheckBox | QSpinBox | QDoubleSpinBox  # one analysis setting's editor
+
+
 def _label(name: str) -> str:
     return LABELS.get(name, name.replace("_", " ").capitalize())
 
@@ -89,7 +93,7 @@ class AnalysisPanel(QWidget):
     def __init__(self) -> None:
         super().__init__()
         form = QFormLayout()
-        self.fields: dict[str, QWidget] = {}
+        self.fields: dict[str, Field] = {}
         for f in fields(AnalysisSettings):
             widget = self._field(f.name, getattr(DEFAULTS, f.name))
             widget.setToolTip(AnalysisSettings.help(f.name))
@@ -112,7 +116,7 @@ class AnalysisPanel(QWidget):
         layout.addWidget(self.error)
         layout.addWidget(defaults)
 
-    def _field(self, name: str, value: object) -> QWidget:
+    def _field(self, name: str, value: object) -> Field:
         if isinstance(value, bool):
             box = QCheckBox()
             box.toggled.connect(self.changed)
@@ -142,7 +146,7 @@ class AnalysisPanel(QWidget):
             if isinstance(widget, QCheckBox):
                 widget.setChecked(bool(value))
             else:
-                widget.setValue(0 if value is None else value)  # type: ignore[attr-defined]
+                widget.setValue(0 if value is None else value)
         self.error.setText("")
 
     def settings(self) -> AnalysisSettings:
@@ -152,7 +156,7 @@ class AnalysisPanel(QWidget):
             if isinstance(widget, QCheckBox):
                 values[name] = widget.isChecked()
             else:
-                values[name] = widget.value()  # type: ignore[attr-defined]
+                values[name] = widget.value()
         values["tolerance"] = values["tolerance"] or None
         try:
             found = AnalysisSettings(**values)
@@ -182,8 +186,8 @@ class SoundImport(QObject):
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
         """Note the keys held when files are dropped on the lanes (the view handles the drop)."""
-        if event.type() == QEvent.Type.Drop:
-            self._drop_modifiers = event.modifiers()  # type: ignore[attr-defined]
+        if isinstance(event, QDropEvent):
+            self._drop_modifiers = event.modifiers()
         return False
 
     def add_actions(self, menu: QMenu) -> None:
