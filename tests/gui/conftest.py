@@ -74,7 +74,7 @@ def window(qtbot):
     win.resize(1300, 800)
     win.show()
     qtbot.waitExposed(win)
-    win.view.geometry.px_per_unit = 200.0
+    win.view.lane_geometry.px_per_unit = 200.0
     win.view.snapping = False
     win.view.refresh()
     win.ids = ids

@@ -21,7 +21,7 @@ PX = 200.0
 
 
 def ruler_x(win, u: float) -> int:
-    return round(win.view.geometry.x(u) - win.view.horizontalScrollBar().value())
+    return round(win.view.lane_geometry.x(u) - win.view.horizontalScrollBar().value())
 
 
 def ruler_drag(win, u0: float, u1: float, y: int = 30) -> None:
@@ -86,7 +86,7 @@ def test_overlapping_clips_are_marked_and_muted_tracks_dimmed(window):
     c1 = win.ids["c1"]
     c2 = win.ids["c2"]  # 2.0 .. 2.5 s on t2
     # drag the ramp up a lane and left, onto the end of the sine
-    lane = round(win.view.geometry.lane_height)
+    lane = round(win.view.lane_geometry.lane_height)
     drag(win, clip_point(win, c2, 0.1), clip_point(win, c2, 0.1) + QPoint(-round(0.8 * PX), -lane))
     track = win.doc.project.find_clip(c2)[0]
     assert track.id == win.ids["t1"]

@@ -22,7 +22,7 @@ PX = 200.0
 
 
 def ruler_click(win, u: float) -> None:
-    x = round(win.view.geometry.x(u) - win.view.horizontalScrollBar().value())
+    x = round(win.view.lane_geometry.x(u) - win.view.horizontalScrollBar().value())
     QTest.mouseClick(win.ruler, LEFT, pos=QPoint(x, 30))
 
 
@@ -63,7 +63,7 @@ def test_cut_two_tracks_and_paste_keeps_their_lanes_and_offsets(window):
     win = window
     c1, c2 = win.ids["c1"], win.ids["c2"]  # 0.5 s on t1, 2.0 s on t2
     top_left = view_point(win, QPointF(0.2 * PX, 2))
-    bottom_right = view_point(win, QPointF(2.8 * PX, 2 * win.view.geometry.lane_height - 4))
+    bottom_right = view_point(win, QPointF(2.8 * PX, 2 * win.view.lane_geometry.lane_height - 4))
     drag(win, top_left, bottom_right)
     assert set(win.doc.selected_clips) == {c1, c2}
     QTest.keyClick(win, Qt.Key.Key_X, CTRL)
@@ -114,7 +114,7 @@ def test_json_text_from_a_script_pastes_and_junk_is_refused(window):
     p, _ = edits.add_clip(p, track, tile, 0.0, gain=0.3)
     QGuiApplication.clipboard().setText(projectfile.dumps(p))
     ruler_click(win, 4.0)
-    click(win, view_point(win, QPointF(3.9 * PX, 2.5 * win.view.geometry.lane_height)))
+    click(win, view_point(win, QPointF(3.9 * PX, 2.5 * win.view.lane_geometry.lane_height)))
     assert win.doc.selected_clips == []
     QTest.keyClick(win, Qt.Key.Key_V, CTRL)
     [new] = win.doc.selected_clips

@@ -24,7 +24,7 @@ def key(win, k, mods=Qt.KeyboardModifier.NoModifier) -> None:
 def test_palette_drop_makes_a_clip_on_that_track(window):
     win = window
     before = win.doc.project
-    lane = win.view.geometry.lane_top(2) + 30  # the stiffness track
+    lane = win.view.lane_geometry.lane_top(2) + 30  # the stiffness track
     send_drop(win, tile_mime(win.ids["ramp"]), view_point(win, QPointF(3.0 * PX, lane)))
     track = win.doc.project.track(win.ids["t3"])
     assert len(track.clips) == 1
@@ -99,7 +99,7 @@ def test_variants_saved_and_switched_with_one_key(window):
 
 def test_palette_tabs_add_rename_remove(window):
     win = window
-    pal = win.palette
+    pal = win.tile_palette
     pal.name.setText("Buzzes")
     QTest.mouseClick(pal.add_button, Qt.MouseButton.LeftButton)
     assert win.doc.project.tab("Buzzes").role == "user"
@@ -131,13 +131,13 @@ def test_track_header_gain_mute_solo_and_add_remove(window):
 
 def test_zoom_keys_and_ctrl_wheel(window):
     win = window
-    before = win.view.geometry.px_per_unit
+    before = win.view.lane_geometry.px_per_unit
     key(win.view, Qt.Key.Key_Equal, CTRL)
-    assert win.view.geometry.px_per_unit == pytest.approx(before * 1.25)
+    assert win.view.lane_geometry.px_per_unit == pytest.approx(before * 1.25)
     width = win.view.clip_scene_rect(win.ids["c1"]).width()
     assert width == pytest.approx(1.25 * PX, abs=1)
     key(win.view, Qt.Key.Key_Minus, CTRL)
-    assert win.view.geometry.px_per_unit == pytest.approx(before)
+    assert win.view.lane_geometry.px_per_unit == pytest.approx(before)
     at = QPointF(300, 40)
     wheel = QWheelEvent(
         at,
@@ -150,7 +150,7 @@ def test_zoom_keys_and_ctrl_wheel(window):
         False,
     )
     QApplication.sendEvent(win.view.viewport(), wheel)
-    assert win.view.geometry.px_per_unit == pytest.approx(before * 1.25)
+    assert win.view.lane_geometry.px_per_unit == pytest.approx(before * 1.25)
 
 
 def test_title_shows_unsaved_changes_and_close_asks_once(window, tmp_path):

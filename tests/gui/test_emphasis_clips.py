@@ -38,7 +38,7 @@ def designer(qtbot):
     win.resize(1300, 700)
     win.show()
     qtbot.waitExposed(win)
-    win.view.geometry.px_per_unit = PX
+    win.view.lane_geometry.px_per_unit = PX
     win.view.snapping = False
     win.view.refresh()
     yield win

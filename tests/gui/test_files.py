@@ -50,7 +50,7 @@ def test_file_dropped_from_the_desktop_lands_on_that_track_at_the_drop_time(
     before = win.doc.project
     mime = QMimeData()
     mime.setUrls([QUrl.fromLocalFile(str(wav))])
-    lane = win.view.geometry.lane_top(1) + 30  # the second drive track
+    lane = win.view.lane_geometry.lane_top(1) + 30  # the second drive track
     send_drop(win, mime, view_point(win, QPointF(3.0 * PX, lane)))
     qtbot.waitUntil(lambda: not win.jobs, timeout=10_000)
     clips = win.doc.project.track(win.ids["t2"]).clips
@@ -126,8 +126,8 @@ def test_recent_menu_lists_opened_projects_newest_first_and_remembers_them(
 
 def click_tile(win, tab: str, tile_id: str) -> None:
     """Click a tile's thumbnail in a palette tab."""
-    win.palette.tabs.setCurrentWidget(win.palette.tile_list(tab))
-    tiles = win.palette.tile_list(tab)
+    win.tile_palette.tabs.setCurrentWidget(win.tile_palette.tile_list(tab))
+    tiles = win.tile_palette.tile_list(tab)
     role = Qt.ItemDataRole.UserRole
     item = next(tiles.item(i) for i in range(tiles.count()) if tiles.item(i).data(role) == tile_id)
     at = tiles.visualItemRect(item).center()
@@ -163,7 +163,7 @@ def test_save_tile_as_writes_the_selected_tile(
     assert win.doc.selected_tile == win.ids["ramp"]
     choose_file(monkeypatch, "getSaveFileName", tmp_path / "my ramp", chosen_filter)
     before = win.doc.project
-    QTest.mouseClick(win.palette.save_button, Qt.MouseButton.LeftButton)
+    QTest.mouseClick(win.tile_palette.save_button, Qt.MouseButton.LeftButton)
     path = tmp_path / f"my ramp{suffix}"
     values = read_column(path)
     assert len(values) == 5000
@@ -178,17 +178,17 @@ def test_load_tile_adds_the_file_to_the_current_tab_as_one_step(window, monkeypa
     values = np.round(np.sin(2 * np.pi * 30 * t), 6)
     path = tmp_path / "wobble.txt"
     np.savetxt(path, np.column_stack([t, values]), header="time\tvalue", comments="% ")
-    win.palette.tabs.setCurrentWidget(win.palette.tile_list("Scratch"))
+    win.tile_palette.tabs.setCurrentWidget(win.tile_palette.tile_list("Scratch"))
     before = win.doc.project
     choose_file(monkeypatch, "getOpenFileName", path)
-    QTest.mouseClick(win.palette.load_button, Qt.MouseButton.LeftButton)
+    QTest.mouseClick(win.tile_palette.load_button, Qt.MouseButton.LeftButton)
     added = win.doc.project.tab("Scratch").tile_ids
     assert len(added) == 1
     tile = win.doc.project.tiles[added[0]]
     assert isinstance(tile, SampledTile) and tile.rate == pytest.approx(1000)
     np.testing.assert_allclose(tile.data, values)
     assert win.doc.selected_tile == added[0]
-    assert win.palette.tile_list("Scratch").count() == 1
+    assert win.tile_palette.tile_list("Scratch").count() == 1
     undo(win)
     assert win.doc.project == before
 

@@ -27,7 +27,7 @@ def test_a_crossed_limit_is_shaded_on_its_lane_and_said(stiff_window, qtbot) -> 
     shades = win.findings.shades
     assert [s.area for s in shades] == ["device"]
     rect = shades[0].rect()
-    g = win.view.geometry
+    g = win.view.lane_geometry
     assert rect.left() == pytest.approx(g.x(0.2)) and rect.right() == pytest.approx(g.x(0.7))
     assert g.lane_at(rect.center().y()) == 2  # the stiffness lane
     assert "stiffness-limit" in shades[0].toolTip() and "3 N*m/rad" in shades[0].toolTip()
@@ -37,7 +37,7 @@ def test_a_crossed_limit_is_shaded_on_its_lane_and_said(stiff_window, qtbot) -> 
 
 def test_shading_follows_zoom_and_goes_with_the_clip(stiff_window, qtbot) -> None:
     win = stiff_window
-    win.view.geometry.px_per_unit = 400.0
+    win.view.lane_geometry.px_per_unit = 400.0
     win.view.refresh()
     assert win.findings.shades[0].rect().left() == pytest.approx(400.0 * 0.2)
     click(win, clip_point(win, win.ids["stiff"]))
@@ -85,7 +85,7 @@ def test_a_buzz_a_grasp_cannot_feel_is_shaded_when_the_grasp_is_chosen(window, q
     assert win.player.hand.model == "grasp"
     qtbot.waitUntil(lambda: win.findings.settled and buzz_unfelt(), timeout=20_000)
     shaded = [s for s in win.findings.shades if s.kind == "below-detection"]
-    lanes = {win.view.geometry.lane_at(s.rect().center().y()) for s in shaded}
+    lanes = {win.view.lane_geometry.lane_at(s.rect().center().y()) for s in shaded}
     assert lanes == {0, 1}  # the drive lanes, whose sum is the drive
     win.grab().save("/tmp/findings_grasp.png")
 

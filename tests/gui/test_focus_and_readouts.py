@@ -37,7 +37,7 @@ def test_delete_removes_the_spline_point_when_the_curve_has_focus(window, qtbot)
     assert len(win.editor.tile.points) == count - 1
     assert win.doc.project.find_clip(c1)[1].id == c1  # the clip was not deleted
     # with the palette focused, Delete leaves the clips alone and says why
-    tiles = win.palette.tabs.currentWidget()
+    tiles = win.tile_palette.tabs.currentWidget()
     first = tiles.visualItemRect(tiles.item(0)).center()
     QTest.mouseClick(tiles.viewport(), LEFT, pos=first)
     assert tiles.hasFocus()
@@ -53,7 +53,7 @@ def test_delete_removes_the_spline_point_when_the_curve_has_focus(window, qtbot)
 
 def test_ruler_click_moves_the_playhead_and_its_readout(window):
     win = window
-    x = round(win.view.geometry.x(1.25) - win.view.horizontalScrollBar().value())
+    x = round(win.view.lane_geometry.x(1.25) - win.view.horizontalScrollBar().value())
     QTest.mouseClick(win.ruler, LEFT, pos=QPoint(x, 10))
     assert win.view.scene().playhead_u == pytest.approx(1.25, abs=1 / 200)
     assert win.transport.where.text() == f"{win.view.scene().playhead_u:.3f} s"
@@ -81,7 +81,7 @@ def test_a_new_project_lists_each_template_once(window, tmp_path, axis):
 
 def test_a_new_project_starts_with_the_playhead_at_zero(window):
     win = window
-    x = round(win.view.geometry.x(2.0) - win.view.horizontalScrollBar().value())
+    x = round(win.view.lane_geometry.x(2.0) - win.view.horizontalScrollBar().value())
     QTest.mouseClick(win.ruler, LEFT, pos=QPoint(x, 10))
     assert win.transport.where.text() != "0.000 s"
     win.new_project("position")

@@ -38,7 +38,7 @@ def test_move_across_tracks_takes_the_new_tracks_meaning(window, qtbot):
     c1 = window.ids["c1"]
     before = window.doc.project
     start = clip_point(window, c1)
-    drag(window, start, start + QPoint(0, 2 * window.view.geometry.lane_height))
+    drag(window, start, start + QPoint(0, 2 * window.view.lane_geometry.lane_height))
     track, moved = clip(window, c1)
     assert track.id == window.ids["t3"] and track.kind == "stiffness"
     assert moved.start == pytest.approx(0.5)
@@ -123,7 +123,7 @@ def test_mirror_line_then_amplitude_drag_scales_about_it(window, qtbot):
     assert placed.pivot == pytest.approx(0.5, abs=0.05)
     assert placed.scale == 1.0
     start = clip_point(window, c1, 0.5, 0.5)
-    half = window.view.geometry.lane_height / 2 - 8
+    half = window.view.lane_geometry.lane_height / 2 - 8
     drag(window, start, start - QPoint(0, int(half)), SHIFT)  # up by `half` doubles
     _, scaled = clip(window, c1)
     assert scaled.scale == pytest.approx(2.0, rel=0.05)
@@ -139,7 +139,7 @@ def test_rubber_band_selects_across_tracks_and_merge_lands_in_palette(window, qt
     win = window
     scratch_before = win.doc.project.tab("Scratch").tile_ids
     top_left = view_point(win, QPointF(0.2 * PX, 2))
-    bottom_right = view_point(win, QPointF(2.2 * PX, 2 * win.view.geometry.lane_height - 4))
+    bottom_right = view_point(win, QPointF(2.2 * PX, 2 * win.view.lane_geometry.lane_height - 4))
     drag(win, top_left, bottom_right)
     assert set(win.doc.selected_clips) == {win.ids["c1"], win.ids["c2"]}
     QTest.keyClick(win, Qt.Key.Key_M, Qt.KeyboardModifier.ControlModifier)

@@ -89,7 +89,7 @@ def test_lanes_and_the_waveform_editor_have_scales_in_the_tracks_units(window):
     )
     assert win.editor.track().id == win.ids["t1"]
     image = win.view.viewport().grab().toImage()
-    lane_zero = win.view.mapFromScene(0, win.view.geometry.lane_height / 2).y()
+    lane_zero = win.view.mapFromScene(0, win.view.lane_geometry.lane_height / 2).y()
     assert image.pixelColor(3, lane_zero).lightness() < 200  # the scale's "0" label is drawn
 
 
@@ -156,7 +156,7 @@ def test_an_import_lands_on_the_selected_clips_track_where_it_covers_nothing(
         win.view.viewport(), Qt.MouseButton.LeftButton, pos=clip_point(win, win.ids["c1"], 0.25)
     )
     assert win.view.scene().cursor_u == pytest.approx(0.75, abs=1 / PX)  # inside the sine
-    win.view.geometry.px_per_unit = 2000.0  # the view shows about half a second
+    win.view.lane_geometry.px_per_unit = 2000.0  # the view shows about half a second
     win.view.refresh()
     win.view.horizontalScrollBar().setValue(0)
     win.import_files([tmp_path / "piece.wav"], win.import_track(), win.arrange.here())
@@ -167,5 +167,5 @@ def test_an_import_lands_on_the_selected_clips_track_where_it_covers_nothing(
     new = next(c for c in clips if c.id != win.ids["c1"])
     assert new.start == pytest.approx(1.5)  # after the sine, not on top of it
     assert new.duration == pytest.approx(0.4)
-    bar, x = win.view.horizontalScrollBar(), win.view.geometry.x(1.5)  # the view went to it
+    bar, x = win.view.horizontalScrollBar(), win.view.lane_geometry.x(1.5)  # the view went to it
     assert bar.value() > 0 and bar.value() <= x <= bar.value() + win.view.viewport().width()

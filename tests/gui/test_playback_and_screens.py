@@ -32,6 +32,11 @@ def test_space_plays_on_the_sim_and_the_scope_fills(window, qtbot):
     assert not win.player.playing
 
 
+def test_the_editor_fits_a_1280_by_800_screen(window):
+    window.resize(1280, 800)
+    assert (window.width(), window.height()) == (1280, 800)
+
+
 @pytest.mark.parametrize("name", ["fan_knob", "notification_buzz"])
 def test_screenshot(qtbot, name):
     from timeline.gui.main_window import MainWindow

@@ -116,9 +116,12 @@ def test_holding_hand_plays_until_stop_and_a_new_hand_applies_at_once(fan_knob, 
     # zoomed in, the view pages along so the playhead stays on screen
     win.view.zoom(4.0)
     win.view.horizontalScrollBar().setValue(0)
-    assert win.view.geometry.x(win.view.scene().playhead_u) > win.view.viewport().width()
+    assert win.view.lane_geometry.x(win.view.scene().playhead_u) > win.view.viewport().width()
     qtbot.waitUntil(lambda: win.view.horizontalScrollBar().value() > 0, timeout=15_000)
-    x = win.view.geometry.x(win.view.scene().playhead_u) - win.view.horizontalScrollBar().value()
+    x = (
+        win.view.lane_geometry.x(win.view.scene().playhead_u)
+        - win.view.horizontalScrollBar().value()
+    )
     assert 0 <= x <= win.view.viewport().width()
     QTest.mouseClick(win.transport.play_button, Qt.MouseButton.LeftButton)
     assert not win.player.playing

@@ -60,7 +60,7 @@ def test_the_overlay_shows_the_clamp_where_the_design_exceeds_the_device(loud_wi
     assert trace.rendered.min() == pytest.approx(-MAX, rel=1e-9)
     lanes = sorted(c.lane for c in curves(win))
     assert lanes == [0, 1]  # both drive lanes, not the stiffness lane
-    g = win.view.geometry
+    g = win.view.lane_geometry
     first = next(c for c in curves(win) if c.lane == 0)
     columns, lows, highs = first.columns()
     assert highs.max() == pytest.approx(MAX) and lows.min() == pytest.approx(-MAX)
@@ -179,7 +179,7 @@ def detent_window(qtbot):
     win.resize(1300, 800)
     win.show()
     qtbot.waitExposed(win)
-    win.view.geometry.px_per_unit = 400.0
+    win.view.lane_geometry.px_per_unit = 400.0
     win.view.refresh()
     yield win
     win.player.close()
@@ -200,7 +200,7 @@ def test_a_position_project_shows_the_torque_against_the_angle_after_the_clamp(
     drawn = np.isfinite(highs)
     assert np.nanmax(highs) == pytest.approx(MAX, rel=1e-9)  # flat at the clamp, not 0.3
     assert np.nanmin(lows) == pytest.approx(-MAX, rel=1e-9)
-    g = win.view.geometry
+    g = win.view.lane_geometry
     angle = x[drawn] / g.px_per_unit  # rad: the columns are the knob's angles
     assert angle.min() >= -0.05 and angle.max() <= np.pi / 2 + 0.05
     assert angle.max() - angle.min() > 1.0  # the hand turned it through most of the 90 degrees

@@ -37,7 +37,7 @@ def _fresh(win, qtbot) -> dict[str, tuple[float, float, float, str]]:
     other = MainWindow(win.doc.project)
     qtbot.addWidget(other)
     other.resize(win.size())
-    other.view.geometry.px_per_unit = win.view.geometry.px_per_unit
+    other.view.lane_geometry.px_per_unit = win.view.lane_geometry.px_per_unit
     other.view.refresh()
     shown = _shown(other)
     other.player.close()

@@ -51,7 +51,7 @@ def test_menu_command_imports_the_design_and_the_sound(window, qtbot, monkeypatc
     win = window
     monkeypatch.setattr(QFileDialog, "getOpenFileNames", lambda *a, **k: ([str(bursts)], ""))
     tracks_before = len(win.doc.project.tracks)
-    win.view.geometry.px_per_unit = 2000.0  # the view shows about half a second from 0 s
+    win.view.lane_geometry.px_per_unit = 2000.0  # the view shows about half a second from 0 s
     win.view.refresh()
     QTest.keyClick(win, Qt.Key.Key_H, CTRL_SHIFT)
     qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
@@ -71,7 +71,7 @@ def test_menu_command_imports_the_design_and_the_sound(window, qtbot, monkeypatc
     tiles = [project.tile(c.tile_id) for c in placed]
     designs = [t.design for t in tiles if isinstance(t, VibrationTile)]
     assert designs == [dataclasses.replace(expected, emphasis=())]
-    bar, x = win.view.horizontalScrollBar(), win.view.geometry.x(1.5)
+    bar, x = win.view.horizontalScrollBar(), win.view.lane_geometry.x(1.5)
     assert bar.value() > 0 and bar.value() <= x <= bar.value() + win.view.viewport().width()
     new = [*placed, *project.tracks[1].clips, *project.tracks[-1].clips]
     assert set(win.doc.selected_clips) == {c.id for c in new}
@@ -110,7 +110,7 @@ def test_clashing_settings_are_one_sentence_in_the_panel(window, bursts):
 
 def test_alt_drop_on_a_drive_lane_converts_there_or_in_the_next_gap(window, qtbot, bursts):
     win = window
-    lane = win.view.geometry.lane_top(1) + 30  # the second drive track: a ramp at 2.0-2.5 s
+    lane = win.view.lane_geometry.lane_top(1) + 30  # the second drive track: a ramp at 2.0-2.5 s
     for seconds, expected in ((3.0, 3.0), (2.0, 4.2)):  # 2.0: covered; 2.5-3.0 is too short
         drop_files(win, [bursts], view_point(win, QPointF(seconds * PX, lane)), ALT)
         qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
@@ -124,7 +124,7 @@ def test_alt_drop_on_a_drive_lane_converts_there_or_in_the_next_gap(window, qtbo
 
 def test_plain_drop_still_imports_the_waveform(window, qtbot, bursts):
     win = window
-    lane = win.view.geometry.lane_top(1) + 30
+    lane = win.view.lane_geometry.lane_top(1) + 30
     drop_files(win, [bursts], view_point(win, QPointF(2.0 * PX, lane)), Qt.KeyboardModifier(0))
     qtbot.waitUntil(lambda: not win.jobs, timeout=20_000)
     assert "imported bursts.wav" in win.messages.text

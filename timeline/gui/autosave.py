@@ -9,13 +9,15 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import platformdirs
-from PySide6.QtCore import QObject, QTimer
+from PySide6.QtCore import QObject, QTimer, Signal
 
+from timeline.errors import HapticTimelineError
 from timeline.files import projectfile
 from timeline.files.atomic import write_atomically
 from timeline.model import Project
 
 from .document import Document
+from .job_errors import one_line, unexpected
 
 IDLE_MS = 3000
 
@@ -82,8 +84,11 @@ class Autosaver(QObject):
     The write runs on a thread of its own (a project is immutable, so the snapshot taken when the
     editor goes idle cannot change under it): saving a project that holds an hour of audio takes
     tens of seconds, and the editor stays usable meanwhile. One write runs at a time; an idle
-    moment during a write autosaves again after the next interval.
+    moment during a write autosaves again after the next interval. A write that fails says so
+    through `failed` (one line); the next change autosaves again.
     """
+
+    failed = Signal(str)
 
     def __init__(self, doc: Document, idle_ms: int = IDLE_MS) -> None:
         super().__init__()
@@ -115,13 +120,23 @@ class Autosaver(QObject):
         )
         self.writer.start()
 
-    def _write(self, project: Project, meta: dict, discards: int) -> None:
+    def _write(self, project: Project, meta: dict[str, object], discards: int) -> None:
         with self._writing:
             if discards != self._discards:
                 return
             text = json.dumps(meta).encode("utf-8")  # the companion first: a kill between the two
-            write_atomically(self.path.with_suffix(".json"), lambda tmp: tmp.write_bytes(text))
-            projectfile.save(project, self.path)  # leaves the previous autosave, still found
+
+            def write_meta(tmp: Path) -> None:
+                tmp.write_bytes(text)
+
+            try:
+                write_atomically(self.path.with_suffix(".json"), write_meta)
+                projectfile.save(project, self.path)  # leaves the previous autosave, still found
+            except (HapticTimelineError, OSError) as exc:
+                reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else exc
+                self.failed.emit(one_line(f"Autosave failed: {reason}"))
+            except Exception as exc:  # noqa: BLE001 - a bug must not end autosaving unheard
+                self.failed.emit(unexpected("Autosave", exc))
 
     def discard(self) -> None:
         """Remove this session's autosave (after a save or a clean close); a write in progress

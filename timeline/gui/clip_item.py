@@ -32,11 +32,11 @@ def value_offset(value: float, height: float) -> float:
 class ClipItem(QGraphicsItem):
     """Draws one clip; the view decides what a mouse press on it means (see `zone`)."""
 
-    def __init__(self, geometry: Geometry) -> None:
+    def __init__(self, geometry: Geometry, clip: Clip, tile: Tile) -> None:
         super().__init__()
-        self.geometry = geometry
-        self.clip: Clip | None = None
-        self.tile: Tile | None = None
+        self.lane_geometry = geometry
+        self.clip = clip  # shown once update_from has placed it
+        self.tile = tile
         self.colour = QColor("#888888")
         self.rate = 10_000.0
         self.selected = False
@@ -45,7 +45,7 @@ class ClipItem(QGraphicsItem):
         self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
         self._w = 1.0
         self._h = 1.0
-        self._key: tuple = ()
+        self._key: tuple[object, ...] = ()
         self.muted = False
         self.covered: tuple[tuple[float, float], ...] = ()
 
@@ -67,7 +67,7 @@ class ClipItem(QGraphicsItem):
         A muted (or not soloed) track's clips are dimmed; `covered` spans (axis units) where
         another clip overlaps this one are hatched.
         """
-        g = self.geometry
+        g = self.lane_geometry
         w = max(2.0, g.x(clip.duration))
         h = g.lane_height - 2 * CLIP_MARGIN
         key = (
@@ -126,8 +126,8 @@ class ClipItem(QGraphicsItem):
         """Where the fade-in or fade-out handle sits (item coordinates)."""
         clip = self.clip
         if which == "in":
-            return QPointF(self.geometry.x(clip.fade_in.length), 0.0)
-        return QPointF(self._w - self.geometry.x(clip.fade_out.length), 0.0)
+            return QPointF(self.lane_geometry.x(clip.fade_in.length), 0.0)
+        return QPointF(self._w - self.lane_geometry.x(clip.fade_out.length), 0.0)
 
     def zone(self, pos: QPointF) -> str:
         """What a press at an item position grabs: fade-in, fade-out, left, right or body.
@@ -172,7 +172,7 @@ class ClipItem(QGraphicsItem):
             painter.drawLine(QPointF(0, y), QPointF(w, y))
         self._paint_label(painter)
         for a, b in self.covered:
-            x0, x1 = self.geometry.x(a - clip.start), self.geometry.x(b - clip.start)
+            x0, x1 = self.lane_geometry.x(a - clip.start), self.lane_geometry.x(b - clip.start)
             painter.setPen(QPen(QColor("#b02020"), 1))
             painter.setBrush(QBrush(QColor(200, 40, 40, 120), Qt.BrushStyle.BDiagPattern))
             painter.drawRect(QRectF(x0, h - 10, x1 - x0, 10))
@@ -187,8 +187,8 @@ class ClipItem(QGraphicsItem):
             return
         x0, x1 = math.floor(exposed.left()), math.ceil(exposed.right())
         count = max(1, x1 - x0)
-        t0 = clip.start + self.geometry.u(x0)
-        t1 = clip.start + self.geometry.u(x1)
+        t0 = clip.start + self.lane_geometry.u(x0)
+        t1 = clip.start + self.lane_geometry.u(x1)
         lo, hi = clip_columns(clip, self.tile, self.rate, t0, t1, count)
         # One vertical line per pixel column from its min to its max, each reaching the previous
         # column's range so the trace is continuous: as a filled polygon, a dense hour-long wave
@@ -220,7 +220,7 @@ class ClipItem(QGraphicsItem):
         clip = self.clip
         painter.setPen(QPen(QColor("#202020"), 1))
         for which, fade in (("in", clip.fade_in), ("out", clip.fade_out)):
-            length = self.geometry.x(fade.length)
+            length = self.lane_geometry.x(fade.length)
             if length >= 1:
                 xs = np.linspace(0.0, 1.0, 24)
                 gain = fade_in_gain(xs, fade.shape)

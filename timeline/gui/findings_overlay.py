@@ -169,8 +169,11 @@ class FindingsOverlay(QObject):
             self._draw(self.doc.project, self.report)
             return
         report = result.report
-        changed = self.report is None or _keys(self.report) != _keys(report)
-        changed = changed or self.report.notes != report.notes
+        changed = (
+            self.report is None
+            or _keys(self.report) != _keys(report)
+            or self.report.notes != report.notes
+        )
         self.report, self.traces, self.peaks = report, result.traces, result.peaks
         self._draw(self.doc.project, report)
         if changed:
@@ -188,7 +191,7 @@ class FindingsOverlay(QObject):
         for shade in self.shades:
             scene.removeItem(shade)
         self.shades = []
-        geometry = scene.geometry
+        geometry = scene.lane_geometry
         terms = [track_kind(t.kind).term for t in project.tracks]
         for finding in report.findings:
             layer = LAYER_OF.get(finding.layer, finding.layer)

@@ -80,7 +80,7 @@ class Inspector(QWidget):
         self.form.setContentsMargins(0, 0, 0, 0)
         self.boxes: dict[str, QDoubleSpinBox] = {}
         self.labels: dict[str, ScrubLabel] = {}
-        self._shown: tuple = ()
+        self._shown: tuple[object, ...] = ()
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 2, 4, 2)
         layout.addWidget(self.title)
@@ -129,9 +129,9 @@ class Inspector(QWidget):
             # a field may be the one whose Enter led here: delete it once its signal returns
             row = self.form.takeRow(0)
             for part in (row.labelItem, row.fieldItem):
-                if part is not None and part.widget() is not None:
-                    part.widget().hide()
-                    part.widget().deleteLater()
+                if part is not None and (widget := part.widget()) is not None:
+                    widget.hide()
+                    widget.deleteLater()
         self.boxes, self.labels = {}, {}
         for name in names:
             unit = self._unit(name, axis, tile)[1]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
@@ -68,6 +69,7 @@ class MainWindow(QMainWindow):
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self._build()
         self.autosaver = Autosaver(self.doc)
+        self.autosaver.failed.connect(lambda text: self.messages.show_message(text, "error"))
         self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
         self.rendered_action = self.findings.rendered.add_action(
             self.view_menu, self.findings.show_rendered
@@ -93,7 +95,7 @@ class MainWindow(QMainWindow):
         self.view = TimelineView(doc)
         self.headers = HeaderColumn(doc)
         self.ruler = Ruler(self.view)
-        self.palette = Palette(doc)
+        self.tile_palette = Palette(doc)
         self.editor = WaveformEditor(doc)
         self.inspector = Inspector(doc)
         self.transport = Transport(self.player)
@@ -105,7 +107,7 @@ class MainWindow(QMainWindow):
         )
         self.view.files_dropped.connect(self.import_files)
         self.view.context_requested.connect(self._fill_clip_menu)
-        self.palette.range_dropped.connect(self._range_dropped)
+        self.tile_palette.range_dropped.connect(self._range_dropped)
         self.transport.play_button.clicked.connect(lambda _=False: self.play_stop())
         self.transport.hand_changed.connect(self._hand_changed)
         self.ruler.clicked.connect(self._ruler_clicked)
@@ -124,7 +126,7 @@ class MainWindow(QMainWindow):
         grid.addWidget(self.view, 1, 1)
 
         top = QSplitter(Qt.Orientation.Horizontal)
-        top.addWidget(self.palette)
+        top.addWidget(self.tile_palette)
         top.addWidget(lanes)
         top.setStretchFactor(1, 1)
         top.setSizes([320, 1080])
@@ -144,7 +146,12 @@ class MainWindow(QMainWindow):
         self._menus()
 
     def _action(
-        self, menu: QMenu, text: str, slot, shortcut: str | QKeySequence = "", tip: str = ""
+        self,
+        menu: QMenu,
+        text: str,
+        slot: Callable[[], object],
+        shortcut: str | QKeySequence | QKeySequence.StandardKey = "",
+        tip: str = "",
     ) -> QAction:
         action = QAction(text, self)
         if shortcut:
@@ -290,7 +297,7 @@ class MainWindow(QMainWindow):
         """Remove the selected clips (a design with its emphasis), when the timeline (not another
         region) has focus."""
         focus = QApplication.focusWidget()
-        elsewhere = (self.palette, self.editor, self.inspector, self.transport, self.headers)
+        elsewhere = (self.tile_palette, self.editor, self.inspector, self.transport, self.headers)
         if focus is not None and any(r is focus or r.isAncestorOf(focus) for r in elsewhere):
             self.messages.show_message(
                 "Delete removes clips when the timeline has focus: click a clip first", "error"
@@ -517,17 +524,13 @@ class MainWindow(QMainWindow):
             self.sound_import.convert_files(paths, track_id, at)
             return
         for path in paths:
-            job = import_job(path)
-            job.done.connect(
-                lambda imported, j=job, p=path: self._imported(j, p, imported, track_id, at)
+            self.run_job(
+                import_job(path),
+                f"importing {path.name}…",
+                lambda imported, p=path: self._imported(p, imported, track_id, at),
             )
-            self._start(job, f"importing {path.name}…")
 
-    def _imported(self, job: FileJob, path: Path, imported, track_id: str, at: float) -> None:
-        self._finish(job)
-        if job.cancelled:
-            self.messages.show_message("import cancelled; nothing was changed")
-            return
+    def _imported(self, path: Path, imported, track_id: str, at: float) -> None:
         project = self.doc.project
         chosen = track_id if any(t.id == track_id for t in project.tracks) else None
         try:
@@ -553,26 +556,35 @@ class MainWindow(QMainWindow):
     def export_to(self, path: Path) -> FileJob:
         """Export in the background; the file appears only when the export has finished."""
         job = export_job(self.doc.project, path)
-        job.done.connect(lambda tmp, j=job: self._exported(j, tmp, path))
-        self._start(job, f"exporting {path.name}…")
+        self.run_job(job, f"exporting {path.name}…", lambda tmp: self._exported(tmp, path))
         return job
 
-    def _exported(self, job: FileJob, tmp: Path, path: Path) -> None:
-        self._finish(job)
-        finish_export(tmp, path, job.cancelled)
-        self.messages.show_message("export cancelled" if job.cancelled else f"exported {path.name}")
+    def _exported(self, tmp: Path, path: Path) -> None:
+        try:
+            finish_export(tmp, path)
+        except OSError as exc:
+            tmp.unlink(missing_ok=True)
+            self.messages.show_message(f"could not export: {exc.strerror or exc}", "error")
+            return
+        self.messages.show_message(f"exported {path.name}")
 
-    def _start(self, job: FileJob, text: str) -> None:
+    def run_job(self, job: FileJob, text: str, on_done: Callable[[Any], None]) -> None:
+        """Start a file job, listed in `jobs` (with progress and Cancel) until it ends: done
+        hands the result to `on_done`, failed and cancelled say so in the message bar."""
         self.jobs.append(job)
         job.progress.connect(self.messages.set_progress)
+        job.done.connect(lambda result, j=job: (self._job_ended(j), on_done(result)))
         job.failed.connect(
-            lambda error, j=job: (self._finish(j), self.messages.show_message(error, "error"))
+            lambda error, j=job: (self._job_ended(j), self.messages.show_message(error, "error"))
+        )
+        job.cancelled.connect(
+            lambda j=job: (self._job_ended(j), self.messages.show_message(f"{j.what} cancelled"))
         )
         self.messages.show_message(text)
         self.messages.set_progress(0.0)
         job.start()
 
-    def _finish(self, job: FileJob) -> None:
+    def _job_ended(self, job: FileJob) -> None:
         if job in self.jobs:
             self.jobs.remove(job)
         if not self.jobs:

@@ -33,6 +33,8 @@ class MessageBar(QWidget):
         self.progress.hide()
         self.cancel = QPushButton("Cancel")
         self.cancel.hide()
+        for button in (self.action, self.cancel):  # both hide once clicked: keep the focus where
+            button.setFocusPolicy(Qt.FocusPolicy.NoFocus)  # it was (not a track name's text)
         self.cancel.clicked.connect(self.cancel_requested)
         layout.addWidget(self.label, 1)
         layout.addWidget(self.action)

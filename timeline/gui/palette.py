@@ -70,22 +70,25 @@ class TileList(QListWidget):
 
     def fit_grid(self) -> None:
         """Use the largest thumbnails with which every tile fits without scrolling."""
-        room = self.contentsRect()
-        width = room.width() - self.verticalScrollBar().sizeHint().width()  # as if it showed
-        for scale in SCALES:
-            cell_w = round(SIZE[0] * scale) + LABEL_ROOM[0]
-            cell_h = round(SIZE[1] * scale) + LABEL_ROOM[1]
-            columns = max(1, width // cell_w)
-            if math.ceil(self.count() / columns) * cell_h <= room.height():
-                break
+        scale = next((s for s in SCALES if self._fits(s)), SCALES[-1])  # smallest if none fits
         if scale != self.scale:
             self._set_scale(scale)
+
+    def _fits(self, scale: float) -> bool:
+        """Whether every tile shows without scrolling at this thumbnail scale."""
+        room = self.contentsRect()
+        width = room.width() - self.verticalScrollBar().sizeHint().width()  # as if it showed
+        cell_w = round(SIZE[0] * scale) + LABEL_ROOM[0]
+        cell_h = round(SIZE[1] * scale) + LABEL_ROOM[1]
+        columns = max(1, width // cell_w)
+        return math.ceil(self.count() / columns) * cell_h <= room.height()
 
     def resizeEvent(self, event) -> None:
         super().resizeEvent(event)
         self.fit_grid()
 
-    def mimeData(self, items):  # noqa: N802 - Qt override
+    # Qt takes a null QMimeData (None) as "nothing to drag"; the stubs do not allow it
+    def mimeData(self, items):  # noqa: N802  # pyright: ignore[reportIncompatibleMethodOverride]
         return tile_mime(items[0].data(Qt.ItemDataRole.UserRole)) if items else None
 
     def dragEnterEvent(self, event) -> None:
@@ -150,7 +153,7 @@ class Palette(QWidget):
         layout.addWidget(self.tabs, 1)
         layout.addLayout(tabs_row)
         layout.addLayout(tiles_row)
-        self._shown: tuple = ()
+        self._shown: tuple[object, ...] = ()
         self._icons: dict[tuple[str, int], QIcon] = {}
         doc.changed.connect(self.refresh)
         self.refresh()
@@ -160,8 +163,9 @@ class Palette(QWidget):
 
     def tile_list(self, tab: str) -> TileList:
         for i in range(self.tabs.count()):
-            if self.tabs.tabText(i) == tab:
-                return self.tabs.widget(i)
+            tiles = self.tabs.widget(i)
+            if self.tabs.tabText(i) == tab and isinstance(tiles, TileList):
+                return tiles
         raise KeyError(tab)
 
     def refresh(self) -> None:
@@ -176,7 +180,8 @@ class Palette(QWidget):
         while self.tabs.count():
             widget = self.tabs.widget(0)
             self.tabs.removeTab(0)
-            widget.deleteLater()
+            if widget is not None:
+                widget.deleteLater()
         for tab in project.palette:
             tiles = TileList()
             tiles.range_dropped.connect(

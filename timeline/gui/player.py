@@ -24,13 +24,14 @@ from timeline.plugins.device_protocol import Device, Hand, LiveTelemetry, device
 from timeline.rendering import playback
 from timeline.rendering.sound_out import SoundOut
 
+from .job_errors import unexpected
 from .live_stream import LiveStream, LiveTables
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
 
 
-class _Stopped(HapticTimelineError):
-    """Stop was pressed during a position sweep."""
+class _Stopped(Exception):
+    """Stop was pressed during a position sweep (control flow, not a user error)."""
 
 
 class Player(QObject):
@@ -105,6 +106,7 @@ class Player(QObject):
         try:
             device = self._open()
             self.stream = self.tables = None
+            stop = project.duration if stop is None else stop
             if project.axis == "position":
                 hand = self.hand
                 duration = None if hand.turn_speed else HOLD_SECONDS
@@ -112,7 +114,6 @@ class Player(QObject):
                 self.tables = LiveTables(sweep)
                 program, self._origin = self.tables.program, sweep.origin
             else:
-                stop = project.duration if stop is None else stop
                 if stop <= start:
                     raise HapticTimelineError("nothing to play: the project has no clips there")
                 self.stream = LiveStream(project, device.info.rate, start, stop, loop, tracks)
@@ -139,6 +140,9 @@ class Player(QObject):
             pass
         except HapticTimelineError as exc:
             self._outcome = str(exc)
+            return
+        except Exception as exc:  # noqa: BLE001 - a bug must still end the play, and say so
+            self._outcome = unexpected("Playing", exc)
             return
         self._outcome = ""
 

@@ -13,6 +13,8 @@ LIMIT = 10
 def recent_files() -> list[Path]:
     """Recently opened or saved projects, newest first (missing files left out)."""
     names = QSettings().value(KEY, [], type=list)
+    if not isinstance(names, list):
+        return []
     return [Path(n) for n in names if isinstance(n, str) and Path(n).exists()]
 
 

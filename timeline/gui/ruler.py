@@ -48,10 +48,10 @@ class Ruler(QWidget):
     # --- mapping ---------------------------------------------------------------------------
 
     def x_of(self, u: float) -> float:
-        return self.view.geometry.x(u) - self.view.horizontalScrollBar().value()
+        return self.view.lane_geometry.x(u) - self.view.horizontalScrollBar().value()
 
     def u_of(self, x: float) -> float:
-        return max(0.0, self.view.geometry.u(x + self.view.horizontalScrollBar().value()))
+        return max(0.0, self.view.lane_geometry.u(x + self.view.horizontalScrollBar().value()))
 
     def marker_at(self, x: float, y: float) -> int | None:
         """The marker whose flag is under a widget point."""
@@ -69,7 +69,7 @@ class Ruler(QWidget):
         painter.fillRect(self.rect(), QColor("#fafaf8"))
         project = self.doc.project
         axis = project.axis
-        g = self.view.geometry
+        g = self.view.lane_geometry
         factor = display_factor(axis)
         step = nice_step(g.px_per_unit / factor)
         left = self.view.horizontalScrollBar().value()

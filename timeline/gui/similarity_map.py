@@ -161,7 +161,7 @@ def similarity_window(window, source: str) -> SimilarityMap:  # noqa: ANN001 - t
     if source == "variants":
         title, icons = "Variants by feel", lambda: variant_icons(doc.project)
     else:
-        tab = window.palette.current_tab()
+        tab = window.tile_palette.current_tab()
         title, icons = f"Palette tab {tab!r} by feel", lambda: tab_icons(doc.project, tab)
     panel = SimilarityMap(title, icons)
     window.similarity_maps = [*getattr(window, "similarity_maps", []), panel]

@@ -7,7 +7,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from timeline.model import Project, Track
+from timeline.model import Clip, Project, Track
 
 
 def snap(value: float, edges: Iterable[float], grid: float, tolerance: float) -> float:
@@ -52,9 +52,9 @@ class EdgeIndex:
         return best
 
 
-def _same_objects(a: tuple, b: tuple) -> bool:
+def _same_objects(a: tuple[object, ...], b: tuple[object, ...]) -> bool:
     return len(a) == len(b) and all(x is y for x, y in zip(a, b, strict=True))
 
 
-def _sorted_edges(clips: Iterable) -> np.ndarray:
+def _sorted_edges(clips: Iterable[Clip]) -> np.ndarray:
     return np.sort(np.array([e for c in clips for e in (c.start, c.end)], dtype=np.float64))

@@ -13,8 +13,10 @@ from __future__ import annotations
 
 from dataclasses import fields
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QEvent, QObject, Qt, Signal
+from PySide6.QtGui import QDropEvent
 from PySide6.QtWidgets import (
     QCheckBox,
     QDockWidget,
@@ -22,7 +24,6 @@ from PySide6.QtWidgets import (
     QFileDialog,
     QFormLayout,
     QLabel,
-    QMainWindow,
     QMenu,
     QPushButton,
     QScrollArea,
@@ -36,6 +37,9 @@ from timeline.edits.placement import into_gap
 from timeline.errors import HapticTimelineError
 from timeline.files.convert import ConvertedSound, analyse_sound_file, place_converted
 from timeline.gui.file_jobs import FileJob
+
+if TYPE_CHECKING:
+    from timeline.gui.main_window import MainWindow
 
 SOUND_EXTENSIONS = "*.wav *.flac *.ogg *.aif *.aiff *.mp3 *.opus"
 DROP_MODIFIER = Qt.KeyboardModifier.AltModifier
@@ -74,6 +78,9 @@ LABELS = {
 }  # fmt: skip
 
 
+Field = QCheckBox | QSpinBox | QDoubleSpinBox  # one analysis setting's editor
+
+
 def _label(name: str) -> str:
     return LABELS.get(name, name.replace("_", " ").capitalize())
 
@@ -86,7 +93,7 @@ class AnalysisPanel(QWidget):
     def __init__(self) -> None:
         super().__init__()
         form = QFormLayout()
-        self.fields: dict[str, QWidget] = {}
+        self.fields: dict[str, Field] = {}
         for f in fields(AnalysisSettings):
             widget = self._field(f.name, getattr(DEFAULTS, f.name))
             widget.setToolTip(AnalysisSettings.help(f.name))
@@ -109,7 +116,7 @@ class AnalysisPanel(QWidget):
         layout.addWidget(self.error)
         layout.addWidget(defaults)
 
-    def _field(self, name: str, value: object) -> QWidget:
+    def _field(self, name: str, value: object) -> Field:
         if isinstance(value, bool):
             box = QCheckBox()
             box.toggled.connect(self.changed)
@@ -139,7 +146,7 @@ class AnalysisPanel(QWidget):
             if isinstance(widget, QCheckBox):
                 widget.setChecked(bool(value))
             else:
-                widget.setValue(0 if value is None else value)  # type: ignore[attr-defined]
+                widget.setValue(0 if value is None else value)
         self.error.setText("")
 
     def settings(self) -> AnalysisSettings:
@@ -149,7 +156,7 @@ class AnalysisPanel(QWidget):
             if isinstance(widget, QCheckBox):
                 values[name] = widget.isChecked()
             else:
-                values[name] = widget.value()  # type: ignore[attr-defined]
+                values[name] = widget.value()
         values["tolerance"] = values["tolerance"] or None
         try:
             found = AnalysisSettings(**values)
@@ -163,7 +170,7 @@ class AnalysisPanel(QWidget):
 class SoundImport(QObject):
     """The editor's sound-to-haptic command: menu actions, the settings dock and the jobs."""
 
-    def __init__(self, window: QMainWindow) -> None:
+    def __init__(self, window: MainWindow) -> None:
         super().__init__(window)
         self.window = window
         self.panel = AnalysisPanel()
@@ -179,8 +186,8 @@ class SoundImport(QObject):
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
         """Note the keys held when files are dropped on the lanes (the view handles the drop)."""
-        if event.type() == QEvent.Type.Drop:
-            self._drop_modifiers = event.modifiers()  # type: ignore[attr-defined]
+        if isinstance(event, QDropEvent):
+            self._drop_modifiers = event.modifiers()
         return False
 
     def add_actions(self, menu: QMenu) -> None:
@@ -218,16 +225,14 @@ class SoundImport(QObject):
             return
         for path in paths:
             job = FileJob(
-                lambda progress, p=path: analyse_sound_file(p, settings, progress=progress)
+                f"Import of {path.name} as haptic",
+                lambda progress, p=path: analyse_sound_file(p, settings, progress=progress),
             )
-            job.done.connect(lambda found, j=job: self._analysed(j, found, track_id, at))
-            self.window._start(job, f"analysing {path.name}…")
+            self.window.run_job(
+                job, f"analysing {path.name}…", lambda found: self._analysed(found, track_id, at)
+            )
 
-    def _analysed(self, job: FileJob, found: ConvertedSound, track_id: str, at: float) -> None:
-        self.window._finish(job)
-        if job.cancelled:
-            self.window.messages.show_message("import cancelled; nothing was changed")
-            return
+    def _analysed(self, found: ConvertedSound, track_id: str, at: float) -> None:
         doc = self.window.doc
         drive = next((t.id for t in doc.project.tracks if t.id == track_id and t.kind == "drive"),
                      None)  # fmt: skip

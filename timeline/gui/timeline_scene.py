@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
-from PySide6.QtCore import QLineF, QRectF
+from PySide6.QtCore import QLineF, QRect, QRectF
 from PySide6.QtGui import QColor, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsLineItem, QGraphicsScene
 
 from timeline.edits.placement import overlaps
-from timeline.model import Project, Track
+from timeline.model import Clip, Project, Track
 from timeline.plugins.track_kinds import track_kind
 from timeline.tiles import Tile
 
@@ -21,6 +21,9 @@ from .geometry import Geometry, display_factor, nice_step
 LANE_COLOURS = (QColor("#f4f4f2"), QColor("#ebebe8"))
 EXTRA_LANE_ROOM = 40
 
+# zoom (px per unit), lane height, project rate and whether the track is muted
+TrackView = tuple[float, float, float, bool]
+
 
 @dataclass(frozen=True)
 class _TrackShown:
@@ -29,14 +32,21 @@ class _TrackShown:
     track: Track
     lane: int
     selected: frozenset[str]
-    view: tuple  # zoom, lane height, project rate and whether the track is muted
+    view: TrackView
     tiles: dict[str, Tile]  # tile id -> the tile object its clips were drawn from
 
     @property
     def clip_ids(self) -> set[str]:
         return set(self.track.clips_by_id)
 
-    def same(self, track: Track, lane: int, selected: frozenset[str], view: tuple, tiles) -> bool:
+    def same(
+        self,
+        track: Track,
+        lane: int,
+        selected: frozenset[str],
+        view: TrackView,
+        tiles: Mapping[str, Tile] | None,
+    ) -> bool:
         """True when nothing the items show changed (tiles None: the library is unchanged)."""
         return (
             track is self.track
@@ -52,7 +62,7 @@ class TimelineScene(QGraphicsScene):
 
     def __init__(self, geometry: Geometry) -> None:
         super().__init__()
-        self.geometry = geometry
+        self.lane_geometry = geometry
         self.items_by_clip: dict[str, ClipItem] = {}
         self._shown: dict[str, _TrackShown] = {}  # track id -> what its items show
         self._tiles: object = None  # the tile library the items were last updated from
@@ -78,7 +88,7 @@ class TimelineScene(QGraphicsScene):
         same; its items are then left alone, so a drag on 20,000 clips updates a few items.
         """
         self.project, self.selection = project, set(selection)
-        view = (self.geometry.px_per_unit, self.geometry.lane_height, project.rate)
+        view = (self.lane_geometry.px_per_unit, self.lane_geometry.lane_height, project.rate)
         # edits that leave the tile library alone share its map, so its tiles need no check
         tiles = None if project.tiles is self._tiles else project.tiles
         self._tiles = project.tiles
@@ -112,14 +122,14 @@ class TimelineScene(QGraphicsScene):
         project: Project,
         track: Track,
         lane: int,
-        view: tuple,
+        view: TrackView,
         before: _TrackShown | None,
         same_tiles: bool,
     ) -> _TrackShown:
         """Update the items of a changed track; clips the edit did not touch are skipped."""
         colour = track_kind(track.kind).colour
         tiles: dict[str, Tile] = {}
-        unchanged: dict = {}
+        unchanged: dict[str, Clip] = {}
         if before is not None and same_tiles and before.lane == lane and before.view == view:
             unchanged = before.track.clips_by_id
             tiles = dict(before.tiles)
@@ -127,18 +137,19 @@ class TimelineScene(QGraphicsScene):
         muted = view[-1]
         for clip in track.clips:
             if (
-                unchanged.get(clip.id) is clip
+                before is not None
+                and unchanged.get(clip.id) is clip
                 and (clip.id in self.selection) == (clip.id in before.selected)
                 and self.items_by_clip[clip.id].covered == covered.get(clip.id, ())
             ):
                 continue
-            item = self.items_by_clip.get(clip.id)
-            if item is None:
-                item = self.items_by_clip[clip.id] = ClipItem(self.geometry)
-                self.addItem(item)
             tile = tiles.get(clip.tile_id)
             if tile is None:
                 tile = tiles[clip.tile_id] = project.tile(clip.tile_id)
+            item = self.items_by_clip.get(clip.id)
+            if item is None:
+                item = self.items_by_clip[clip.id] = ClipItem(self.lane_geometry, clip, tile)
+                self.addItem(item)
             item.update_from(
                 clip,
                 tile,
@@ -163,7 +174,7 @@ class TimelineScene(QGraphicsScene):
 
     def refit(self) -> None:
         """Size the scene to the lanes and the project (plus room to drag past the end)."""
-        g = self.geometry
+        g = self.lane_geometry
         lanes = len(self.project.tracks) if self.project else 0
         width = max(
             self.min_width, g.x((self.project.duration if self.project else 0) * 1.25) + 200
@@ -177,17 +188,18 @@ class TimelineScene(QGraphicsScene):
     def set_playhead(self, u: float) -> None:
         """Move the playhead line."""
         self.playhead_u = u
-        x = self.geometry.x(u)
+        x = self.lane_geometry.x(u)
         self.playhead.setLine(QLineF(x, 0, x, self.sceneRect().height()))
 
     def set_cursor(self, u: float) -> None:
         """Move the edit cursor (where split cuts)."""
         self.cursor_u = u
-        x = self.geometry.x(u)
+        x = self.lane_geometry.x(u)
         self.cursor.setLine(QLineF(x, 0, x, self.sceneRect().height()))
 
-    def drawBackground(self, painter: QPainter, rect: QRectF) -> None:
-        g = self.geometry
+    def drawBackground(self, painter: QPainter, exposed: QRectF | QRect) -> None:
+        rect = QRectF(exposed)
+        g = self.lane_geometry
         lanes = len(self.project.tracks) if self.project else 0
         painter.fillRect(rect, QColor("#d9d9d6"))
         for lane in range(lanes):
@@ -214,4 +226,4 @@ class TimelineScene(QGraphicsScene):
     def grid_step(self) -> float:
         """The grid spacing in axis units at the current zoom (what snapping lands on)."""
         factor = display_factor(self.project.axis if self.project else "time")
-        return nice_step(self.geometry.px_per_unit / factor) / factor / 4
+        return nice_step(self.lane_geometry.px_per_unit / factor) / factor / 4

@@ -50,8 +50,8 @@ class TimelineView(QGraphicsView):
     gesture_finished = Signal()
 
     def __init__(self, doc: Document) -> None:
-        self.geometry = Geometry()
-        self._scene = TimelineScene(self.geometry)
+        self.lane_geometry = Geometry()
+        self._scene = TimelineScene(self.lane_geometry)
         super().__init__(self._scene)
         self.doc = doc
         self.snapping = True
@@ -94,7 +94,7 @@ class TimelineView(QGraphicsView):
 
     def track_at(self, y: float) -> Track | None:
         """The track whose lane is at scene y, or None."""
-        lane = self.geometry.lane_at(y)
+        lane = self.lane_geometry.lane_at(y)
         tracks = self.doc.project.tracks
         return tracks[lane] if 0 <= lane < len(tracks) else None
 
@@ -110,7 +110,7 @@ class TimelineView(QGraphicsView):
         if not self.snapping:
             return u
         nearest = self._edges.nearest(self.doc.project, u, dragged)
-        return snap(u, [nearest], self.scene().grid_step(), self.geometry.u(SNAP_PX))
+        return snap(u, [nearest], self.scene().grid_step(), self.lane_geometry.u(SNAP_PX))
 
     # --- zoom and scroll -------------------------------------------------------------------
 
@@ -118,17 +118,17 @@ class TimelineView(QGraphicsView):
         """Zoom the time (or angle) axis about a viewport x (the centre by default)."""
         if anchor_x is None:
             anchor_x = self.viewport().width() / 2
-        u = self.geometry.u(self.mapToScene(int(anchor_x), 0).x())
-        self.geometry.zoomed(factor)
+        u = self.lane_geometry.u(self.mapToScene(int(anchor_x), 0).x())
+        self.lane_geometry.zoomed(factor)
         self.refresh()
-        self.horizontalScrollBar().setValue(int(self.geometry.x(u) - anchor_x))
+        self.horizontalScrollBar().setValue(int(self.lane_geometry.x(u) - anchor_x))
         self.zoomed.emit()
 
     def fit(self) -> None:
         """Zoom so the whole project fits the width."""
         duration = self.doc.project.duration or 1.0
         width = max(100, self.viewport().width() - FIT_MARGIN_PX)
-        self.geometry.px_per_unit = width / duration
+        self.lane_geometry.px_per_unit = width / duration
         self.refresh()
         self.horizontalScrollBar().setValue(0)
         self.zoomed.emit()
@@ -136,17 +136,17 @@ class TimelineView(QGraphicsView):
     def keep_visible(self, u: float) -> None:
         """Page the view so an axis position (the playing playhead) stays on screen."""
         bar = self.horizontalScrollBar()
-        x, width = self.geometry.x(u), self.viewport().width()
+        x, width = self.lane_geometry.x(u), self.viewport().width()
         if not bar.value() <= x <= bar.value() + width:
             bar.setValue(int(x - 0.1 * width))
 
     def drawBackground(self, painter: QPainter, rect) -> None:
         super().drawBackground(painter, rect)
-        lane_scale.draw_grid(painter, self.geometry, self.doc.project, rect)
+        lane_scale.draw_grid(painter, self.lane_geometry, self.doc.project, rect)
 
     def drawForeground(self, painter: QPainter, rect) -> None:
         visible = self.mapToScene(self.viewport().rect()).boundingRect()
-        lane_scale.draw_labels(painter, self.geometry, self.doc.project, visible)
+        lane_scale.draw_labels(painter, self.lane_geometry, self.doc.project, visible)
 
     def scrollContentsBy(self, dx: int, dy: int) -> None:
         super().scrollContentsBy(dx, dy)
@@ -191,7 +191,7 @@ class TimelineView(QGraphicsView):
         pos = self.mapToScene(event.position().toPoint())
         mods = event.modifiers()
         item = self.item_at(event.position())
-        self.scene().set_cursor(max(0.0, self.geometry.u(pos.x())))
+        self.scene().set_cursor(max(0.0, self.lane_geometry.u(pos.x())))
         if item is None:
             add = bool(mods & Qt.KeyboardModifier.ControlModifier)
             self.gesture = RubberBandGesture(self, pos, add)
@@ -254,7 +254,7 @@ class TimelineView(QGraphicsView):
         if item is not None and item.clip.id not in self.doc.selected_clips:
             self.doc.select_clips([item.clip.id])
         if item is not None:
-            self.scene().set_cursor(self.geometry.u(self.mapToScene(event.pos()).x()))
+            self.scene().set_cursor(self.lane_geometry.u(self.mapToScene(event.pos()).x()))
         menu = self.menu = QMenu(self)
         self.context_requested.emit(menu)
         if not menu.isEmpty():
@@ -296,6 +296,6 @@ class TimelineView(QGraphicsView):
             self.files_dropped.emit(
                 [Path(p) for p in paths],
                 track.id if track else "",
-                max(0.0, self.geometry.u(pos.x())),
+                max(0.0, self.lane_geometry.u(pos.x())),
             )
             event.acceptProposedAction()

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 from PySide6.QtCore import QEvent, QMimeData, QPointF, QRectF, Qt
-from PySide6.QtGui import QColor, QDrag, QFont, QMouseEvent, QPainter, QPen, QPolygonF
+from PySide6.QtGui import QColor, QDrag, QFont, QKeyEvent, QMouseEvent, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
@@ -65,11 +65,16 @@ class Canvas(QWidget):
         self.span = (-1.0, 1.0)
 
     # mapping between tile units and widget pixels
+    def _duration(self) -> float:
+        """The shown tile's length (1 while none is shown, e.g. undone during a drag)."""
+        tile = self.editor.tile
+        return tile.duration if tile is not None else 1.0
+
     def x_of(self, t: float) -> float:
-        return MARGIN + t / self.editor.tile.duration * (self.width() - 2 * MARGIN)
+        return MARGIN + t / self._duration() * (self.width() - 2 * MARGIN)
 
     def t_of(self, x: float) -> float:
-        return (x - MARGIN) / (self.width() - 2 * MARGIN) * self.editor.tile.duration
+        return (x - MARGIN) / (self.width() - 2 * MARGIN) * self._duration()
 
     def y_of(self, v: float) -> float:
         lo, hi = self.span
@@ -200,7 +205,7 @@ class Canvas(QWidget):
             self.editor.select_point(index)
             return
         a, b = self.editor.range
-        if a <= t <= b and b > a:
+        if a <= t <= b and b > a and self.editor.tile_id:
             drag = QDrag(self)
             drag.setMimeData(range_mime(self.editor.tile_id, a, b))
             drag.exec(Qt.DropAction.CopyAction)
@@ -225,7 +230,7 @@ class Canvas(QWidget):
     def mouseReleaseEvent(self, event: QMouseEvent) -> None:
         if self.selecting:
             a, b = sorted(self.editor.range)
-            self.editor.set_range(max(0.0, a), min(self.editor.tile.duration, b))
+            self.editor.set_range(max(0.0, a), min(self._duration(), b))
         self.selecting = False
         self.dragging = None
 
@@ -245,7 +250,8 @@ class Canvas(QWidget):
 
     def event(self, event: QEvent) -> bool:
         """Delete and Backspace belong to the focused curve, not to the window's clip Delete."""
-        if event.type() == QEvent.Type.ShortcutOverride and event.key() in DELETE_KEYS:
+        overrides = event.type() == QEvent.Type.ShortcutOverride
+        if overrides and isinstance(event, QKeyEvent) and event.key() in DELETE_KEYS:
             event.accept()
             return True
         return super().event(event)
@@ -302,20 +308,23 @@ class WaveformEditor(QWidget):
             "Add the Shift-dragged range as a new tile (or drag the range onto a tab)"
         )
         self.to_palette.clicked.connect(lambda: self.range_to_palette("Scratch"))
-        row = QHBoxLayout()
-        row.addWidget(self.lane_box)
-        row.addWidget(QLabel("point"))
-        row.addWidget(self.t_box)
-        row.addWidget(self.v_box)
-        row.addWidget(self.hz_label)
-        row.addWidget(self.delete_button)
-        row.addStretch(1)
-        row.addWidget(self.copy_button)
-        row.addWidget(self.to_palette)
+        # two rows, so the editor fits a 1280-pixel-wide screen
+        point_row, tile_row = QHBoxLayout(), QHBoxLayout()
+        point_row.addWidget(self.lane_box)
+        point_row.addWidget(QLabel("point"))
+        point_row.addWidget(self.t_box)
+        point_row.addWidget(self.v_box)
+        point_row.addWidget(self.hz_label)
+        point_row.addStretch(1)
+        tile_row.addWidget(self.delete_button)
+        tile_row.addStretch(1)
+        tile_row.addWidget(self.copy_button)
+        tile_row.addWidget(self.to_palette)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 2, 4, 2)
         layout.addWidget(self.canvas, 1)
-        layout.addLayout(row)
+        layout.addLayout(point_row)
+        layout.addLayout(tile_row)
         doc.changed.connect(self.refresh)
         doc.selection_changed.connect(self.refresh)
         self.refresh()
@@ -412,6 +421,8 @@ class WaveformEditor(QWidget):
 
     def apply(self, label: str, edit, *args, merge_key: object = None):
         """Edit the shown tile: edit(project, tile_id, *args), one undo step (see edit_tile)."""
+        if self.tile_id is None:
+            return None
         return edit_tile(self.doc, label, self.tile_id, edit, *args, merge_key=merge_key)
 
     def delete_point(self) -> None:

@@ -19,7 +19,7 @@ class AmplitudeGesture(Gesture):
     def __init__(self, view, press: QPointF, clip_id: str) -> None:
         super().__init__(view, press)
         self.clip_id = clip_id
-        self.half = max(8.0, view.geometry.lane_height / 2 - 8)
+        self.half = max(8.0, view.lane_geometry.lane_height / 2 - 8)
 
     def moved(self, pos: QPointF) -> None:
         dy = pos.y() - self.press.y()

@@ -24,7 +24,7 @@ class FadeGesture(Gesture):
 
     def moved(self, pos: QPointF) -> None:
         clip = self.clip
-        u = self.view.geometry.u(pos.x())
+        u = self.view.lane_geometry.u(pos.x())
         length = u - clip.start if self.which == "in" else clip.end - u
         length = min(max(0.0, length), clip.duration)
         fade = clip.fade_in if self.which == "in" else clip.fade_out

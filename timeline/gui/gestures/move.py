@@ -27,7 +27,7 @@ class MoveGesture(Gesture):
         self.track_id = track.id
 
     def moved(self, pos: QPointF) -> None:
-        g = self.view.geometry
+        g = self.view.lane_geometry
         du = g.u(pos.x() - self.press.x())
         moving = [self.clip_id, *self.others]
         raw = self.clip.start + du

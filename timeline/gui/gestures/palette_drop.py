@@ -47,13 +47,13 @@ class PaletteDrop:
     def where(self, pos: QPointF) -> tuple[str | None, float]:
         """The target track id (None off the lanes) and the snapped start for a scene position."""
         track = self.view.track_at(pos.y())
-        start = self.view.snap(max(0.0, self.view.geometry.u(pos.x())), [])
+        start = self.view.snap(max(0.0, self.view.lane_geometry.u(pos.x())), [])
         return (track.id if track else None), start
 
     def hover(self, pos: QPointF) -> bool:
         """Move the ghost; returns whether a drop here would land on a track."""
         track_id, start = self.where(pos)
-        g = self.view.geometry
+        g = self.view.lane_geometry
         if track_id is None:
             self.ghost.setRect(QRectF())
             return False

@@ -24,7 +24,7 @@ class StretchGesture(Gesture):
         _, self.clip = self.base.find_clip(clip_id)
 
     def moved(self, pos: QPointF) -> None:
-        g = self.view.geometry
+        g = self.view.lane_geometry
         du = g.u(pos.x() - self.press.x())
         clip = self.clip
         smallest = g.u(MIN_LENGTH_PX)

@@ -22,7 +22,7 @@ class TrimGesture(Gesture):
         _, self.clip = self.base.find_clip(clip_id)
 
     def moved(self, pos: QPointF) -> None:
-        du = self.view.geometry.u(pos.x() - self.press.x())
+        du = self.view.lane_geometry.u(pos.x() - self.press.x())
         if self.side == "left":
             start = self.view.snap(self.clip.start + du, [self.clip_id])
             self.apply(edits.trim_clip, self.clip_id, start=start)
