@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -126,7 +127,8 @@ class VibrationDesign:
     def __post_init__(self) -> None:
         amplitude = _breakpoints(self.amplitude, "amplitude")
         frequency = _breakpoints(self.frequency, "frequency")
-        emphasis = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in self.emphasis)
+        given: tuple[Any, ...] = self.emphasis  # (time, amplitude, frequency) tuples are welcome
+        emphasis = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in given)
         emphasis = tuple(sorted(emphasis, key=lambda e: e.time))
         duration = float(self.duration)
         if not (math.isfinite(duration) and duration > 0.0):
