@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 
@@ -36,6 +36,12 @@ Breakpoints = tuple[tuple[float, float], ...]
 def carrier_hz(frequency: np.ndarray | float) -> np.ndarray | float:
     """The carrier frequency (Hz) for a normalised frequency in 0..1."""
     return F_MIN + np.clip(frequency, 0.0, 1.0) * (F_MAX - F_MIN)
+
+
+@overload
+def normalised_frequency(hz: np.ndarray) -> np.ndarray: ...
+@overload
+def normalised_frequency(hz: float) -> float: ...
 
 
 def normalised_frequency(hz: np.ndarray | float) -> np.ndarray | float:
