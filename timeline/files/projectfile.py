@@ -566,7 +566,7 @@ def _project(
         palette=palette,
         variants=variants,
         active_variant=active,
-        metadata=MappingProxyType(metadata),
+        metadata=MappingProxyType(dict(metadata)),  # a copy: the document stays the caller's
         next_id=fields.integer(body, "next_id", "project", 1, fields.MAX_ID),
         markers=markers,
         loop=loop,
