@@ -12,7 +12,16 @@ The Python API the CLI and the editor use::
 """
 
 from importlib import import_module
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # what pyright and IDEs see; at run time each name loads on first use
+    from timeline import edits
+    from timeline.edits.history import History
+    from timeline.errors import EditError, HapticTimelineError, ProjectFileError, RenderError
+    from timeline.files.projectfile import load, save
+    from timeline.model import Clip, Fade, Project, Track
+    from timeline.rendering.mixer import Mixer, render, render_chunks
+    from timeline.tiles import GeneratorTile, SampledTile, SplineTile, generator, spline
 
 # Public names -> the module that defines them. They load on first use, so the command line's
 # --help and verbs that need little do not pay for numpy, scipy and the mixer.
@@ -49,6 +58,11 @@ def __getattr__(name: str) -> Any:
         value = getattr(value, name)
     globals()[name] = value
     return value
+
+
+def __dir__() -> list[str]:
+    """The public names, loaded or not (what an IDE or a notebook completes)."""
+    return sorted(__all__)
 
 
 __all__ = [

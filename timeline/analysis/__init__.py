@@ -10,7 +10,11 @@ their module when first used, so `convert --help` starts without numpy.
 from __future__ import annotations
 
 import importlib
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # what pyright and IDEs see; at run time each name loads on first use
+    from timeline.analysis.settings import DEFAULTS, AnalysisSettings, SettingsError
+    from timeline.analysis.sound import AnalysisError, SoundAnalysis, analyse, analyse_blocks
 
 _HOMES = {
     "DEFAULTS": "settings",
@@ -22,10 +26,23 @@ _HOMES = {
     "analyse_blocks": "sound",
 }
 
-__all__ = sorted(_HOMES)
+__all__ = [
+    "DEFAULTS",
+    "AnalysisError",
+    "AnalysisSettings",
+    "SettingsError",
+    "SoundAnalysis",
+    "analyse",
+    "analyse_blocks",
+]
 
 
 def __getattr__(name: str) -> Any:
     if name not in _HOMES:
         raise AttributeError(f"module 'timeline.analysis' has no attribute {name!r}")
     return getattr(importlib.import_module(f"timeline.analysis.{_HOMES[name]}"), name)
+
+
+def __dir__() -> list[str]:
+    """The public names, loaded or not (what an IDE or a notebook completes)."""
+    return sorted(__all__)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 import scipy.fft
@@ -88,7 +89,8 @@ class SpectrumFrames:
         self.seen += len(block)
         half = self.size // 2
         frames = np.multiply(frames, self.window)  # a fresh array: the view's copy, windowed
-        spectra = scipy.fft.rfft(frames, axis=1)
+        # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array it returns
+        spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1))
         flux, energy, weighted = _features(spectra, half, self.lowpass_bin, self.previous)
         loud = energy >= QUIET_BIN_MAGNITUDE * (self.lowpass_bin - 1)
         centroid = np.where(loud, weighted / np.maximum(energy, 1e-300) / half, 0.0)

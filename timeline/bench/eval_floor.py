@@ -127,13 +127,16 @@ def evaluation_work(project: Project, start: float, stop: float,
             works.append(Work(tile.name, lambda t=tile, u=u, lo=lo, hi=hi:
                               t._values(u, lo, hi)))  # fmt: skip
             continue
+        assert isinstance(tile, GeneratorTile)  # positions holds generator and spline tiles only
         nyquist = 0.5 / du
         params = dict(tile.params)
         works.append(Work(tile.name, lambda t=tile, u=u, lo=lo, hi=hi, f=nyquist, p=params:
                           band_limited(t.generator, u, f, t.duration, p,
                                        lambda v: t._values(v, lo, hi), (lo, hi))))  # fmt: skip
     for (tile_id, step), starts in recordings.items():
-        works += _recording_work(project.tile(tile_id), step, starts, q)
+        recording = project.tile(tile_id)
+        assert isinstance(recording, SampledTile)  # recordings holds sampled tiles only
+        works += _recording_work(recording, step, starts, q)
     for shape, parts in fades.items():
         x = np.concatenate(parts)
         works.append(Work(f"{shape} fades", lambda s=shape, x=x: fade_in_gain(x, s)))

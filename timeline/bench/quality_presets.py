@@ -91,7 +91,7 @@ def run(quick: bool, out: Path) -> list[Table]:
             "stop-band dB",
         ],
     )
-    points: dict[str, tuple[float, float, float]] = {}
+    points: dict[str, tuple[Point, Point]] = {}  # (shapes, recordings) per preset
     for label, q in candidates().items():
         stop = rejection(q, seconds)
         total, worst = 0.0, {True: 0.0, False: 0.0}

@@ -7,6 +7,11 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING, Literal, overload
+
+if TYPE_CHECKING:  # matplotlib loads when a figure is drawn
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 
 @dataclass
@@ -63,7 +68,17 @@ def best_cpu_time(fn: Callable[[], object], repeat: int) -> float:
     return _best(fn, repeat, time.process_time)
 
 
-def figure(width: float = 7.0, height: float = 4.5, ncols: int = 1):
+@overload
+def figure(
+    width: float = 7.0, height: float = 4.5, ncols: Literal[1] = 1
+) -> tuple[Figure, Axes]: ...
+@overload
+def figure(width: float, height: float, ncols: int) -> tuple[Figure, list[Axes]]: ...
+
+
+def figure(
+    width: float = 7.0, height: float = 4.5, ncols: int = 1
+) -> tuple[Figure, Axes | list[Axes]]:
     """A new matplotlib figure and axes (one, or a list of ncols) drawn with the Agg backend."""
     import matplotlib
 

@@ -61,7 +61,9 @@ def _db(x: float) -> float:
     return float(20 * np.log10(max(x, 1e-12)))
 
 
-def measure(rate_in: int, seconds: float, repeat: int) -> list[list[object]]:
+def measure(
+    rate_in: int, seconds: float, repeat: int
+) -> list[tuple[str, float, float, float, float]]:
     """Rows: method, time ms, passband dB, alias dB, SNR dB."""
     n = int(seconds * rate_in)
     nyq = OUT_RATE / 2
@@ -71,7 +73,8 @@ def measure(rate_in: int, seconds: float, repeat: int) -> list[list[object]]:
 
     def tones(rate: float, count: int) -> np.ndarray:
         t = np.arange(count) / rate
-        return sum(np.sin(2 * np.pi * f * t + p) for f, p in zip(freqs, phases, strict=True)) / 12
+        waves = (np.sin(2 * np.pi * f * t + p) for f, p in zip(freqs, phases, strict=True))
+        return sum(waves, np.zeros(count)) / 12
 
     music = tones(rate_in, n)
     rows = []
@@ -92,7 +95,7 @@ def measure(rate_in: int, seconds: float, repeat: int) -> list[list[object]]:
         alias = _level_at(
             fn(_tone(above, rate_in, n), rate_in, OUT_RATE), OUT_RATE - above, OUT_RATE
         )
-        rows.append([name, 1e3 * float(np.median(times)), _db(passband), _db(alias), float(snr)])
+        rows.append((name, 1e3 * float(np.median(times)), _db(passband), _db(alias), float(snr)))
     return rows
 
 
@@ -105,9 +108,10 @@ def run(quick: bool, out: Path) -> list[Table]:
             f"Resamplers: {seconds:g} s at {rate_in} Hz -> {OUT_RATE} Hz (median of 5)",
             ["method", "time ms", "0.9 Nyquist dB", "alias dB", "SNR dB"],
         )
-        table.rows = measure(rate_in, seconds, 5)
-        for row in table.rows:
-            points.setdefault(str(row[0]), []).append((float(row[1]), float(row[4])))
+        rows = measure(rate_in, seconds, 5)
+        table.rows.extend(rows)
+        for name, ms, _, _, snr in rows:
+            points.setdefault(name, []).append((ms, snr))
         tables.append(table)
     tables[-1].notes.append(
         "normal and exact use soxr (HQ, VHQ); draft interpolates linearly (no anti-aliasing)"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -137,10 +138,12 @@ _TONES = ((37.0, 0.5, 0.3), (175.0, 0.3, 1.1), (410.0, 0.15, 2.0), (3_300.0, 0.0
 
 def _tones(t: np.ndarray, stretch: float = 1.0) -> np.ndarray:
     """A recording's in-band content: tones below 0.7 x the 10 kHz grid's Nyquist."""
-    return sum(a * np.sin(2 * np.pi * f / stretch * t + ph) for f, a, ph in _TONES)
+    waves = (a * np.sin(2 * np.pi * f / stretch * t + ph) for f, a, ph in _TONES)
+    return sum(waves, np.zeros(t.shape))
 
 
-def _one_clip(tile: Tile, seconds: float, **fields: object) -> Project:
+def _one_clip(tile: Tile, seconds: float, **fields: Any) -> Project:
+    """One clip of the tile; fields: stretch=factor, in=/out=(fade length, shape)."""
     project = edits.new_project(templates=False)
     project, track = edits.add_track(project, "drive")
     project, tile_id = edits.add_tile(project, tile)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import Any
 
 from timeline.cli.options import positive
 
@@ -43,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
     from timeline.rendering.aliasing import aliasing_notes
 
     project = load(args.project)
-    options = {"fixed_point": True} if args.fixed_point else {}
+    options: dict[str, Any] = {"fixed_point": True} if args.fixed_point else {}
     export_project(project, args.output, rate=args.rate, **options)
     for note in aliasing_notes(project, args.rate):
         print(f"haptic-timeline: warning: {note}", file=sys.stderr)

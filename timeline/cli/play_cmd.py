@@ -15,7 +15,7 @@ from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 if TYPE_CHECKING:  # numpy, the devices and the mixer load when a project is played, not for --help
     import numpy as np
 
-    from timeline.plugins.device_protocol import Telemetry
+    from timeline.plugins.device_protocol import PositionProgram, Telemetry
     from timeline.rendering.playback import Playback
 
 
@@ -162,9 +162,13 @@ def plot_telemetry(
     matplotlib.use("Agg")
     from matplotlib import pyplot as plt
 
+    from timeline.plugins.device_protocol import PositionProgram
+
     t = telemetry.time
     layers = [(k, v) for k, v in playback.layer_names.items() if k in telemetry.layers]
-    origin = getattr(playback.program, "origin", None)
+    program = playback.program
+    position = program if isinstance(program, PositionProgram) else None
+    origin = None if position is None else position.origin
     rows = len(layers) + 3 + (origin is not None)
     heights = [1.0] * (len(layers) + 3) + ([2.2] if origin is not None else [])
     fig, axes = plt.subplots(
@@ -197,8 +201,8 @@ def plot_telemetry(
     for ax in time_axes[:-1]:
         ax.tick_params(labelbottom=False)
     time_axes[-1].set_xlabel("time [s]")
-    if origin is not None:
-        _feel_map(axes[-1], telemetry, playback)
+    if position is not None:
+        _feel_map(axes[-1], telemetry, position)
     fig.suptitle(title + "\n" + "; ".join(telemetry.summary()[1:4]), fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -218,11 +222,10 @@ def _shade(ax, t: np.ndarray, mask: np.ndarray, colour: str, label: str) -> None
         ax.axvspan(t[a], t[b] + dt, color=colour, alpha=0.25, label=None if n else label, lw=0)
 
 
-def _feel_map(ax, telemetry: Telemetry, playback: Playback) -> None:
+def _feel_map(ax, telemetry: Telemetry, program: PositionProgram) -> None:
     """Position mode: the torque table over angle, with the torque felt along the knob's path."""
     import numpy as np
 
-    program = playback.program
     table = program.table
     ax.plot(np.degrees(table.angles()), table.torque * 1e3, color="#f18f01", lw=1.2,
             label="torque table T(angle)")  # fmt: skip

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from timeline.cli.options import add_range_options, parse_tracks
 from timeline.errors import HapticTimelineError
@@ -29,11 +29,12 @@ def _write_npz(layers: Layers, path: Path) -> None:
 
     axis = "time" if layers.axis == "time" else "angle"
     positions = layers.start + np.arange(layers.length) / layers.rate
-    columns = {k: np.asarray(v) for k, v in layers.columns.items()}
+    arrays: dict[str, Any] = {axis: positions, "rate": np.float64(layers.rate)}
+    arrays.update((k, np.asarray(v)) for k, v in layers.columns.items())
 
     def write(tmp: Path) -> None:
         with open(tmp, "wb") as f:
-            np.savez(f, **{axis: positions}, rate=np.float64(layers.rate), **columns)
+            np.savez(f, **arrays)
 
     write_atomically(path, write)
 

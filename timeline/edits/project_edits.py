@@ -14,6 +14,7 @@ import math
 from bisect import bisect_right
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -47,7 +48,7 @@ def new_project(
     """
     if rate is None:
         rate = DEFAULT_TIME_RATE if axis == "time" else DEFAULT_POSITION_RATE
-    project = Project(axis=axis, rate=rate, metadata=metadata)
+    project = Project(axis=axis, rate=rate, metadata=MappingProxyType(metadata))
     if templates:
         for tile in template_tiles(axis):
             project, _ = add_tile(project, tile, "Templates")

@@ -45,8 +45,9 @@ def set_length(project: Project, tile_id: str, length: float) -> Project:
     if not (math.isfinite(length) and length > 0):
         raise EditError(f"a tile's length must be a positive number, not {length:g}")
     tile = project.tile(tile_id)
-    if isinstance(tile, GeneratorTile) and GENERATORS[tile.generator].length is not None:
-        natural = GENERATORS[tile.generator].length(dict(tile.params))
+    natural_length = GENERATORS[tile.generator].length if isinstance(tile, GeneratorTile) else None
+    if isinstance(tile, GeneratorTile) and natural_length is not None:
+        natural = natural_length(dict(tile.params))
         if abs(length - natural) > _EDGE * max(1.0, natural):
             raise EditError(
                 f"a {tile.generator} lasts {natural:.6g} s, as its parameters say; "

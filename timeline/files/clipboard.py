@@ -8,6 +8,9 @@ with `timeline.files.projectfile.loads`, and the editor validates it like any fi
 from __future__ import annotations
 
 from dataclasses import fields, replace
+from types import MappingProxyType
+
+from immutables import Map
 
 from timeline import edits
 from timeline.errors import EditError
@@ -41,8 +44,8 @@ def snippet(project: Project, clip_ids: list[str]) -> Project:
         axis=project.axis,
         rate=project.rate,
         tracks=tracks,
-        tiles=tiles,
-        metadata={"title": "clipboard"},
+        tiles=Map(tiles),
+        metadata=MappingProxyType({"title": "clipboard"}),
         next_id=project.next_id,
     )
 

@@ -56,7 +56,8 @@ def _base64_pieces(data: np.ndarray) -> Iterator[bytes]:
     carry = b""
     for first in range(0, len(data), BLOCK_SAMPLES):
         block = np.ascontiguousarray(data[first : first + BLOCK_SAMPLES], dtype=tag)
-        packed = carry + packer.compress(block)
+        # an ndarray is a buffer: numpy's stubs declare __buffer__ for Python >= 3.12 only
+        packed = carry + packer.compress(block)  # pyright: ignore[reportArgumentType]
         whole = len(packed) - len(packed) % 3  # base64 of whole 3-byte groups joins seamlessly
         yield base64.b64encode(packed[:whole])
         carry = packed[whole:]
@@ -78,7 +79,9 @@ def decode(entry: Any, where: str) -> np.ndarray:
         raise FieldError(f"{where} declares {count} samples but holds fewer")
     require(size, f"opening {where}")
     out = np.empty(count, dtype=dtype)
-    filled = _inflate(_unpacked(text, where), memoryview(out).cast("B"), where, count)
+    # an ndarray is a buffer: numpy's stubs declare __buffer__ for Python >= 3.12 only
+    view = memoryview(out).cast("B")  # pyright: ignore[reportArgumentType]
+    filled = _inflate(_unpacked(text, where), view, where, count)
     if filled < size:
         raise FieldError(f"{where} holds {filled // dtype.itemsize} samples but declares {count}")
     if not out.dtype.isnative:

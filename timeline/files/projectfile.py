@@ -19,6 +19,7 @@ from types import MappingProxyType
 from typing import Any
 
 import numpy as np
+from immutables import Map
 
 from timeline.errors import EditError, HapticTimelineError, ProjectFileError
 from timeline.files import gc_pause
@@ -27,6 +28,7 @@ from timeline.files import project_fields as fields
 from timeline.files.atomic import write_atomically
 from timeline.files.project_fields import FieldError
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
+from timeline.model.id_sequence import IdSequence
 from timeline.model.markers import LoopRegion, Marker
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.tiles.vibration_tile import VibrationTile
@@ -502,8 +504,8 @@ def from_json(doc: Any) -> Project:
         for k, v in fields.get(doc, "media", dict, "the file").items()
     }
 
-    def tiles(obj: Any, where: str) -> MappingProxyType:
-        return MappingProxyType(
+    def tiles(obj: Any, where: str) -> Map:
+        return Map(
             {
                 str(k): _tile_from_json(v, media, f"{where} tile {k!r}")
                 for k, v in fields.get(obj, "tiles", dict, where).items()
@@ -528,7 +530,7 @@ def from_json(doc: Any) -> Project:
         PaletteTab(
             fields.get(t, "name", str, "palette tab"),
             fields.get(t, "role", str, "palette tab"),
-            tuple(_tile_ids(fields.get(t, "tiles", list, "palette tab"))),
+            IdSequence(_tile_ids(fields.get(t, "tiles", list, "palette tab"))),
         )
         for t in fields.get(body, "palette", list, "project")
     )
@@ -548,7 +550,7 @@ def from_json(doc: Any) -> Project:
 def _project(
     body: dict,
     tracks: Callable[[Any, str], tuple[Track, ...]],
-    tiles: Callable[[Any, str], MappingProxyType],
+    tiles: Callable[[Any, str], Map],
     palette: tuple[PaletteTab, ...],
     variants: tuple[Variant, ...],
     active: str | None,
@@ -564,7 +566,7 @@ def _project(
         palette=palette,
         variants=variants,
         active_variant=active,
-        metadata=metadata,
+        metadata=MappingProxyType(dict(metadata)),  # a copy: the document stays the caller's
         next_id=fields.integer(body, "next_id", "project", 1, fields.MAX_ID),
         markers=markers,
         loop=loop,

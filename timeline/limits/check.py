@@ -40,13 +40,16 @@ def check(
     hand = hand or Hand("hold")
     design = sample(project, info.rate, quality)
     notes = []
-    if info.kind == "kinesthetic" and info.dynamics is None:
-        notes.append(f"{info.name} does not declare its inertia and damping: stability not checked")
-    elif info.kind == "kinesthetic" and not info.dynamics.estimator_declared:
-        notes.append(
-            f"{info.name} does not declare its velocity and acceleration estimator: "
-            "damping and mass limits not checked (stiffness and saturation are)"
-        )
+    if info.kind == "kinesthetic":
+        if info.dynamics is None:
+            notes.append(
+                f"{info.name} does not declare its inertia and damping: stability not checked"
+            )
+        elif not info.dynamics.estimator_declared:
+            notes.append(
+                f"{info.name} does not declare its velocity and acceleration estimator: "
+                "damping and mass limits not checked (stiffness and saturation are)"
+            )
     vibration = "d" in design.terms and project.axis == "time" and info.kind == "vibrotactile"
     if vibration and actuator is None:
         notes.append("no actuator profile: band and detection not checked (use --actuator)")

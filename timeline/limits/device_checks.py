@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import cast
 
 import numpy as np
 from scipy.signal import butter, iirpeak, lfilter
@@ -148,8 +149,10 @@ def actuator_output(actuator: Actuator, drive: np.ndarray, rate: float) -> np.nd
             return np.zeros_like(drive)
         b, a = iirpeak(actuator.resonance, actuator.q, fs=rate)
     else:
-        b, a = butter(2, [actuator.low, min(actuator.high, 0.99 * nyquist)], "bandpass", fs=rate)
-    return lfilter(b, a, drive)
+        band = [actuator.low, min(actuator.high, 0.99 * nyquist)]
+        # scipy is unannotated: pyright infers the union of every output= form (zpk, sos, None)
+        b, a = cast(tuple[np.ndarray, np.ndarray], butter(2, band, "bandpass", fs=rate))
+    return np.asarray(lfilter(b, a, drive))  # y alone: no zi, so no (y, zf) pair
 
 
 def settling_time(actuator: Actuator) -> float:

@@ -22,7 +22,13 @@ from timeline.errors import HapticTimelineError
 from timeline.limits.design import Sampled
 from timeline.limits.device_checks import actuator_output
 from timeline.model import Project
-from timeline.plugins.device_protocol import Actuator, DeviceInfo, Hand, open_device
+from timeline.plugins.device_protocol import (
+    Actuator,
+    DeviceInfo,
+    Hand,
+    PositionProgram,
+    open_device,
+)
 from timeline.plugins.device_protocol.hand import DEFAULT_TURN_DEG_PER_S
 from timeline.rendering.playback import prepare
 
@@ -101,9 +107,9 @@ def knob(project: Project, info: DeviceInfo, hand: Hand, quality: str = "normal"
     layer = {k: tel.layers.get(k, zero) for k in "dkbm"}
     designed = layer["d"] - layer["k"] * angle - layer["b"] * velocity - layer["m"] * acceleration
     label = f"torque on {info.name}, hand {hand}{assumed}"
-    if project.axis == "time":
-        return Trace(label, "mNm", 1e3, tel.time, designed, tel.torque, step=period)
     program = playback.program
+    if not isinstance(program, PositionProgram):  # a time project: blocks over time
+        return Trace(label, "mNm", 1e3, tel.time, designed, tel.torque, step=period)
     angle = program.origin + tel.angle
     step = 1.0 / program.table_now().rate
     return Trace(label, "mNm", 1e3, tel.time, designed, tel.torque, angle, step)

@@ -1,7 +1,8 @@
 """The project state: immutable tracks, clips, tiles, palette, variants, markers.
 
 project holds the state's types; markers the markers and loop region; id_sequence the palette
-tabs' persistent id lists. Every change of state is an edit (timeline.edits).
+tabs' persistent id lists; picture a project drawn as SVG (what a notebook shows). Every change
+of state is an edit (timeline.edits).
 """
 
 from timeline.model.markers import LoopRegion, Marker

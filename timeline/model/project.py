@@ -18,6 +18,7 @@ from immutables import Map
 from timeline.errors import EditError, finite
 from timeline.model.id_sequence import IdSequence
 from timeline.model.markers import LoopRegion, Marker
+from timeline.model.picture import project_svg
 from timeline.tiles import Tile
 
 AXES = ("time", "position")
@@ -291,6 +292,10 @@ class Project:
             if v.name == name:
                 return v
         raise EditError(f"there is no variant {name!r}")
+
+    def _repr_svg_(self) -> str:
+        """The timeline as a picture: what a notebook shows (timeline.model.picture)."""
+        return project_svg(self)
 
     def with_id(self, prefix: str) -> tuple[Project, str]:
         """Return a project with its id counter advanced, and a fresh id with the prefix."""

@@ -23,7 +23,7 @@ from collections import OrderedDict
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import astuple, dataclass
 from itertools import chain
-from typing import NamedTuple
+from typing import Generic, NamedTuple, TypeVar
 
 import numpy as np
 
@@ -43,16 +43,18 @@ PEAK_BYTES_PER_SAMPLE = 48  # measured peak memory of one layer's render, per ou
 # under a tenth of such a render); smaller renders (every example) keep numpy and never load numba.
 COMPILED_SAMPLES = 50_000_000
 
+_V = TypeVar("_V")
 
-class _LRU:
+
+class _LRU(Generic[_V]):
     """A least-recently-used cache bounded by the total bytes of its values."""
 
     def __init__(self, max_bytes: int) -> None:
         self.max_bytes = max_bytes
         self.bytes = 0
-        self._items: OrderedDict[object, tuple[object, int]] = OrderedDict()
+        self._items: OrderedDict[object, tuple[_V, int]] = OrderedDict()
 
-    def get(self, key: object):
+    def get(self, key: object) -> _V | None:
         item = self._items.get(key)
         if item is None:
             return None
@@ -62,7 +64,7 @@ class _LRU:
     def fits(self, nbytes: int) -> bool:
         return nbytes <= self.max_bytes // 4
 
-    def put(self, key: object, value: object, nbytes: int) -> None:
+    def put(self, key: object, value: _V, nbytes: int) -> None:
         if not self.fits(nbytes):
             return
         self.pop(key)
@@ -213,8 +215,8 @@ class Mixer:
     """Renders projects, keeping clip-shape and per-window caches between calls."""
 
     def __init__(self, cache_bytes: int = 512 * 2**20) -> None:
-        self._shapes = _LRU(cache_bytes)
-        self._windows = _LRU(cache_bytes)
+        self._shapes: _LRU[np.ndarray] = _LRU(cache_bytes)
+        self._windows: _LRU[_Window] = _LRU(cache_bytes)
         self.stats = MixerStats()
 
     def clear(self) -> None:

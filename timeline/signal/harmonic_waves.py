@@ -18,6 +18,7 @@ import sys
 from collections.abc import Mapping
 
 import numpy as np
+import numpy.typing as npt
 
 HARMONIC = ("square", "saw", "triangle")
 _BLOCK = 8192  # samples summed at a time, so the running sums stay in cache
@@ -70,7 +71,9 @@ def aliased_fraction(generator: str, params: Mapping[str, float], nyquist: float
     return min(1.0, max(0.0, (total - kept) / total))
 
 
-def _coefficients(generator: str, params: Mapping[str, float], keep: int) -> np.ndarray:
+def _coefficients(
+    generator: str, params: Mapping[str, float], keep: int
+) -> npt.NDArray[np.complexfloating]:
     """Complex b_k (k = 1..keep) with the unit wave = mean + Re(sum_k b_k exp(2 pi i k x))."""
     k = np.arange(1, keep + 1, dtype=np.float64)
     if generator == "square":

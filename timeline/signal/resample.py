@@ -94,7 +94,7 @@ def _aligned_start(start: float, step: float) -> int | None:
     m = first + np.arange(q)
     lo = start - m * step
     hit = np.flatnonzero(np.abs(lo - np.round(lo)) < 1e-6)
-    return int(round(lo[hit[0]])) if hit.size else None
+    return round(float(lo[hit[0]])) if hit.size else None
 
 
 def _band_limited(

@@ -57,7 +57,8 @@ class ContentKey:
 
     def update(self, block: np.ndarray) -> None:
         """Add the next samples (of this key's dtype, C-contiguous; hashed in place)."""
-        self._hash.update(memoryview(block).cast("B"))
+        # an ndarray is a buffer: numpy's stubs declare __buffer__ for Python >= 3.12 only
+        self._hash.update(memoryview(block).cast("B"))  # pyright: ignore[reportArgumentType]
 
     def key(self, rate: float) -> str:
         h = self._hash.copy()

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any, overload
 
 import numpy as np
 
@@ -35,6 +36,12 @@ Breakpoints = tuple[tuple[float, float], ...]
 def carrier_hz(frequency: np.ndarray | float) -> np.ndarray | float:
     """The carrier frequency (Hz) for a normalised frequency in 0..1."""
     return F_MIN + np.clip(frequency, 0.0, 1.0) * (F_MAX - F_MIN)
+
+
+@overload
+def normalised_frequency(hz: np.ndarray) -> np.ndarray: ...
+@overload
+def normalised_frequency(hz: float) -> float: ...
 
 
 def normalised_frequency(hz: np.ndarray | float) -> np.ndarray | float:
@@ -126,7 +133,8 @@ class VibrationDesign:
     def __post_init__(self) -> None:
         amplitude = _breakpoints(self.amplitude, "amplitude")
         frequency = _breakpoints(self.frequency, "frequency")
-        emphasis = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in self.emphasis)
+        given: tuple[Any, ...] = self.emphasis  # (time, amplitude, frequency) tuples are welcome
+        emphasis = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in given)
         emphasis = tuple(sorted(emphasis, key=lambda e: e.time))
         duration = float(self.duration)
         if not (math.isfinite(duration) and duration > 0.0):

@@ -10,7 +10,39 @@ never imports a particular plugin.
 """
 
 from importlib import import_module
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # what pyright and IDEs see; at run time each name loads on first use
+    from timeline.plugins.device_protocol.device import Device, Progress, device_names, open_device
+    from timeline.plugins.device_protocol.dynamics import (
+        ACTUATOR_TYPES,
+        ESTIMATORS,
+        Actuator,
+        Dynamics,
+    )
+    from timeline.plugins.device_protocol.errors import DeviceError, HandSpecError
+    from timeline.plugins.device_protocol.hand import (
+        DEFAULT_PUSH_MNM,
+        DEFAULT_TURN_DEG_PER_S,
+        HAND_MODES,
+        Hand,
+    )
+    from timeline.plugins.device_protocol.hand_models import HAND_MODELS, HandModel
+    from timeline.plugins.device_protocol.info import KINDS, DeviceInfo
+    from timeline.plugins.device_protocol.program import (
+        CoefficientBlock,
+        PositionProgram,
+        PositionTable,
+        Program,
+    )
+    from timeline.plugins.device_protocol.telemetry import (
+        TELEMETRY_COLUMNS,
+        LiveTelemetry,
+        Monitor,
+        StabilityFlag,
+        Telemetry,
+        merge_flags,
+    )
 
 # Public names -> the submodule defining them, loaded on first use: the light ones (errors,
 # dynamics, hand, info) do not pull in numpy with the telemetry and programs.
@@ -43,6 +75,11 @@ def __getattr__(name: str) -> Any:
     value = getattr(import_module(f"timeline.plugins.device_protocol.{module}"), name)
     globals()[name] = value
     return value
+
+
+def __dir__() -> list[str]:
+    """The public names, loaded or not (what an IDE or a notebook completes)."""
+    return sorted(__all__)
 
 
 __all__ = [

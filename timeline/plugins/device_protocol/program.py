@@ -86,10 +86,11 @@ class CoefficientBlock:
         if not self.nonfinite:
             return self
 
-        def fix(a: np.ndarray | None) -> np.ndarray | None:
-            return None if a is None else np.where(np.isfinite(a), a, 0.0)
+        def fix(a: np.ndarray) -> np.ndarray:
+            return np.where(np.isfinite(a), a, 0.0)
 
-        return CoefficientBlock(fix(self.d), fix(self.k), fix(self.b), fix(self.m))
+        m = None if self.m is None else fix(self.m)
+        return CoefficientBlock(fix(self.d), fix(self.k), fix(self.b), m)
 
 
 @dataclass(frozen=True, eq=False)
