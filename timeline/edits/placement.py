@@ -7,11 +7,29 @@ what is there; when the track has no room before `limit`, the caller decides wha
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import overload
 
 from timeline import edits
 from timeline.model import Project
 
 EPS = 1e-9
+
+
+@overload
+def free_start(
+    project: Project, track_id: str, length: float, at: float, ignore: Iterable[str] = ()
+) -> float: ...
+
+
+@overload
+def free_start(
+    project: Project,
+    track_id: str,
+    length: float,
+    at: float,
+    ignore: Iterable[str] = (),
+    limit: float = float("inf"),
+) -> float | None: ...
 
 
 def free_start(
