@@ -15,8 +15,7 @@ from typing import Any
 _HOMES = {
     "DEFAULTS": "settings",
     "AnalysisSettings": "settings",
-    "SettingsError": "settings",
-    "AnalysisError": "sound",
+    "SettingsError": "settings",  # the editor's analysis panel imports it from here
     "SoundAnalysis": "sound",
     "analyse": "sound",
     "analyse_blocks": "sound",

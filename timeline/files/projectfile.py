@@ -21,12 +21,11 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from timeline.errors import EditError, HapticTimelineError, ProjectFileError
+from timeline.errors import EditError, FieldError, HapticTimelineError, NotPlain, ProjectFileError
 from timeline.files import gc_pause
 from timeline.files import media as sample_media
 from timeline.files import project_fields as fields
 from timeline.files.atomic import write_atomically
-from timeline.files.project_fields import FieldError
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.model.markers import LoopRegion, Marker
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
@@ -184,12 +183,8 @@ def _plain_clip(obj: Any) -> Clip | None:
         for i in _FADES_AT:
             attrs[_CLIP_ATTRS[i]] = _plain_fade(values[i])
         return Clip.from_checked(attrs)
-    except (EditError, _NotPlain):
+    except (EditError, NotPlain):
         return None
-
-
-class _NotPlain(Exception):
-    """Control flow, never shown: a fade that _plain_fade leaves to the field-by-field reader."""
 
 
 def _plain_fade(obj: dict) -> Fade:
@@ -199,10 +194,10 @@ def _plain_fade(obj: dict) -> Fade:
         try:
             values = _fade_items(obj)
         except KeyError:
-            raise _NotPlain from None
+            raise NotPlain from None
         if tuple(map(type, values)) == _PLAIN_FADE_TYPES:
             return Fade(*values)
-    raise _NotPlain
+    raise NotPlain
 
 
 def _number(obj: Any, key: str, where: str, default: Any) -> float:
@@ -623,9 +618,7 @@ def _opened(parse: Callable[[], Any], name: str) -> Project:
         with gc_pause.paused():
             doc = parse()
             return from_json(doc)
-    except FieldError as exc:
-        raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
-    except HapticTimelineError as exc:
+    except HapticTimelineError as exc:  # a FieldError among them
         raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
     except (ValueError, UnicodeDecodeError) as exc:
         raise ProjectFileError(f"{name} is not a readable project file ({exc})") from None

@@ -12,12 +12,13 @@ never imports a particular plugin.
 from importlib import import_module
 from typing import Any
 
-# Public names -> the submodule defining them, loaded on first use: the light ones (errors,
-# dynamics, hand, info) do not pull in numpy with the telemetry and programs.
+from timeline.errors import DeviceError, HandSpecError  # what a device plugin raises
+
+# Public names -> the submodule defining them, loaded on first use: the light ones (dynamics,
+# hand, info) do not pull in numpy with the telemetry and programs.
 _EXPORTS = {
     **dict.fromkeys(("Device", "Progress", "device_names", "open_device"), "device"),
     **dict.fromkeys(("ACTUATOR_TYPES", "ESTIMATORS", "Actuator", "Dynamics"), "dynamics"),
-    **dict.fromkeys(("DeviceError", "HandSpecError"), "errors"),
     **dict.fromkeys(("DEFAULT_PUSH_MNM", "DEFAULT_TURN_DEG_PER_S", "HAND_MODES", "Hand"), "hand"),
     **dict.fromkeys(("HAND_MODELS", "HandModel"), "hand_models"),
     **dict.fromkeys(("KINDS", "DeviceInfo"), "info"),
