@@ -2,20 +2,23 @@
 
 tests/golden/current.htl was written by the code before the clip schema became one table
 (projectfile's CLIP_FIELDS); saving the same project must give the same bytes, and loading the
-file must give the same project.
+file must give the same project. A clip's absent fields take Clip's defaults.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from timeline import edits
 from timeline.edits import markers
+from timeline.errors import FieldError
 from timeline.files import projectfile
-from timeline.model import Project
+from timeline.model import Clip, Project
 from timeline.signal.vibration_design import Emphasis, VibrationDesign
 from timeline.tiles import SampledTile, generator, spline
 from timeline.tiles.vibration_tile import VibrationTile
@@ -72,3 +75,16 @@ def test_saving_writes_the_pinned_bytes(tmp_path):
 
 def test_the_pinned_file_loads_as_the_project():
     assert projectfile.load(GOLDEN) == small_project()
+
+
+def test_a_clip_of_only_the_required_fields_takes_clips_defaults():
+    required = {"id": "c1", "tile": "tile1", "start": 0.5, "source_in": 0.0, "source_out": 0.2}
+    assert [f.key for f in projectfile.CLIP_FIELDS if f.default is dataclasses.MISSING] == list(
+        required
+    )
+    assert projectfile._clip_from_json(required, "clip") == Clip("c1", "tile1", 0.5, 0.0, 0.2)
+    without_start = {k: v for k, v in required.items() if k != "start"}
+    with pytest.raises(FieldError, match="clip has no 'start'"):
+        projectfile._clip_from_json(without_start, "clip")
+    with pytest.raises(FieldError, match=r"clip.fade_in has no 'shape'"):
+        projectfile._clip_from_json({**required, "fade_in": {"length": 0.1}}, "clip")

@@ -150,6 +150,7 @@ def _clip_lines(clips: Sequence[Clip]) -> list[_Line]:
 
 
 def _clip_line(clip: Clip) -> _Line:
+    """One clip's line (what the tests hold against json's encoder)."""
     return _clip_lines((clip,))[0]
 
 
