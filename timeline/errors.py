@@ -1,4 +1,4 @@
-"""Every exception the host raises, in one tree.
+"""Every exception class of the host (the editor's own job-cancelling ones aside), in one tree.
 
     Exception
     ├── HapticTimelineError      a user's mistake or a file's: one sentence, never a traceback
