@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 
 from tests.analysis.conftest import RATE, tone_bursts
-from timeline.analysis import AnalysisError, AnalysisSettings, analyse, analyse_blocks
+from timeline.analysis import AnalysisSettings, analyse, analyse_blocks
 from timeline.analysis.agreement import on_grid
 from timeline.analysis.sound import level_of
+from timeline.errors import AnalysisError
 
 
 def value_at(points: np.ndarray, t: float) -> float:

@@ -9,8 +9,9 @@ import pytest
 import soundfile as sf
 
 from tests.analysis.conftest import RATE, tone_bursts
-from timeline.analysis import AnalysisError, analyse
+from timeline.analysis import analyse
 from timeline.analysis.source import analyse_file
+from timeline.errors import AnalysisError
 
 
 def test_stereo_file_is_its_channels_mixed(tmp_path: Path) -> None:

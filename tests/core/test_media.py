@@ -12,9 +12,8 @@ import soundfile as sf
 
 from importers import audio
 from timeline import edits
-from timeline.errors import ProjectFileError
+from timeline.errors import FieldError, ProjectFileError
 from timeline.files import media, projectfile
-from timeline.files.project_fields import FieldError
 from timeline.tiles import SampledTile
 
 

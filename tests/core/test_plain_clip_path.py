@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from timeline.errors import FieldError
 from timeline.files import projectfile
-from timeline.files.project_fields import FieldError
 from timeline.model import Clip, Fade
 
 PLAIN = {

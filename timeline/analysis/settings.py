@@ -11,11 +11,7 @@ import math
 from dataclasses import dataclass, field, fields
 from typing import Any
 
-from timeline.errors import HapticTimelineError
-
-
-class SettingsError(HapticTimelineError):
-    """A setting outside the range the analysis can use."""
+from timeline.errors import SettingsError
 
 
 def _setting(default: Any, help: str) -> Any:

@@ -20,11 +20,7 @@ from timeline.analysis.onsets import emphasis
 from timeline.analysis.reduce import RegionReducer
 from timeline.analysis.settings import DEFAULTS, AnalysisSettings
 from timeline.analysis.spectrum import SpectrumFrames, frequency_values
-from timeline.errors import HapticTimelineError
-
-
-class AnalysisError(HapticTimelineError):
-    """A sound the analysis cannot use (no samples, no rate, non-finite samples)."""
+from timeline.errors import AnalysisError
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,8 @@ import numpy as np
 import soundfile as sf
 
 from timeline.analysis.settings import DEFAULTS, AnalysisSettings
-from timeline.analysis.sound import AnalysisError, Level, SoundAnalysis, analyse_blocks
+from timeline.analysis.sound import Level, SoundAnalysis, analyse_blocks
+from timeline.errors import AnalysisError
 
 BLOCK_FRAMES = 1 << 16
 

@@ -16,9 +16,10 @@ import numpy as np
 from timeline import edits
 from timeline.bench.report import Table, best_time
 from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
+from timeline.errors import FormatError
 from timeline.files import exporting, importing
 from timeline.model import Project
-from timeline.plugins.file_formats import FormatError, all_formats
+from timeline.plugins.file_formats import all_formats
 from timeline.tiles import SampledTile
 
 NAME = "formats"

@@ -21,15 +21,11 @@ from timeline.analysis import DEFAULTS, AnalysisSettings, SoundAnalysis
 from timeline.analysis.source import analyse_file, mono_blocks
 from timeline.edits.sound_track import add_sound
 from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
-from timeline.errors import HapticTimelineError
+from timeline.errors import ConvertError
 from timeline.model import Project
 
 MAX_SOUND_SECONDS = 3600.0  # a project keeps the source sound up to an hour long
 PROJECT_EXTENSIONS = (".htl",)
-
-
-class ConvertError(HapticTimelineError):
-    """A conversion that cannot be done as asked; nothing was written."""
 
 
 @dataclass(frozen=True)

@@ -20,16 +20,12 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
-from timeline.errors import HapticTimelineError
+from timeline.errors import HapticTimelineError, SandboxError
 from timeline.signal import memory
 
 SECONDS = 120.0  # wall-clock limit for one parse
 MIN_MEMORY = 2 * 2**30  # the child may always use this much address space ...
 MAX_MEMORY = 32 * 2**30  # ... and never more than this (or what the machine has free)
-
-
-class SandboxError(HapticTimelineError):
-    """An isolated parser crashed, ran out of its limits, or failed unexpectedly."""
 
 
 def run(

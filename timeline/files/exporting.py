@@ -16,10 +16,10 @@ from typing import Any
 
 import numpy as np
 
-from timeline.errors import HapticTimelineError
+from timeline.errors import FormatError, HapticTimelineError
 from timeline.files.atomic import check_target, write_atomically
 from timeline.model import Project
-from timeline.plugins.file_formats import FormatError, Layers, Progress, writer_for
+from timeline.plugins.file_formats import Layers, Progress, writer_for
 from timeline.rendering import mixer
 from timeline.signal import memory
 from timeline.tiles import SampledTile, Tile

@@ -12,11 +12,10 @@ from pathlib import Path
 from typing import Any
 
 from timeline import edits
-from timeline.errors import EditError, HapticTimelineError
+from timeline.errors import EditError, FormatError, HapticTimelineError
 from timeline.files import gc_pause
 from timeline.model import Project
 from timeline.plugins.file_formats import (
-    FormatError,
     Imported,
     Progress,
     TrackInfo,

@@ -18,8 +18,8 @@ from typing import Any, BinaryIO
 
 import numpy as np
 
+from timeline.errors import FieldError
 from timeline.files import project_fields as fields
-from timeline.files.project_fields import FieldError
 from timeline.signal.memory import require
 from timeline.tiles import MAX_TILE_SAMPLES
 

@@ -11,12 +11,10 @@ import json
 import math
 from typing import Any
 
+from timeline.errors import FieldError
+
 MAX_ID = 2**62  # the project's id counter; anything larger was not written by an editor
 _MISSING = object()
-
-
-class FieldError(Exception):
-    """The content is malformed; the message says where and how."""
 
 
 def refuse_constant(name: str) -> float:

@@ -7,26 +7,26 @@ the previous file intact.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import os
 import secrets
-from collections.abc import Callable
-from json.encoder import c_make_encoder, encode_basestring_ascii  # type: ignore[attr-defined]
-from operator import itemgetter
+import typing
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from operator import attrgetter, itemgetter
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from immutables import Map
 
-from timeline.errors import EditError, HapticTimelineError, ProjectFileError
+from timeline.errors import EditError, FieldError, HapticTimelineError, NotPlain, ProjectFileError
 from timeline.files import gc_pause
 from timeline.files import media as sample_media
 from timeline.files import project_fields as fields
 from timeline.files.atomic import write_atomically
-from timeline.files.project_fields import FieldError
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.model.id_sequence import IdSequence
 from timeline.model.markers import LoopRegion, Marker
@@ -53,6 +53,192 @@ def _schema_2_to_3(doc: dict) -> dict:
 
 # Upgrade functions keyed by the schema version they read; each returns the next version's dict.
 MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2, 2: _schema_2_to_3}
+
+
+# --- the clip schema ---------------------------------------------------------------------------
+# A clip is stored as an object of its Clip fields, in Clip's order, each under its own name but
+# tile_id (stored as "tile"); an absent field takes Clip's default, a field without one is
+# required. A fade is an object of its Fade fields ({"length": number, "shape": text}), both
+# required. Writing (a dict, or the one-line template of the project's clips) and reading (the
+# plain-clip fast path, the field-by-field checks) all derive from these two tables.
+
+
+class FileField(NamedTuple):
+    """One field of a clip or a fade in a project file."""
+
+    key: str  # its key in the file
+    attr: str  # the attribute it holds
+    kind: type  # str, float, bool or Fade
+    default: Any  # what an absent key reads as; dataclasses.MISSING: the key is required
+
+
+_FILE_KEYS = {"tile_id": "tile"}  # attributes stored under another key
+
+
+def _fields_of(record: type, required: bool) -> tuple[FileField, ...]:
+    kinds = typing.get_type_hints(record)
+    return tuple(
+        FileField(
+            _FILE_KEYS.get(f.name, f.name),
+            f.name,
+            kinds[f.name],
+            dataclasses.MISSING if required else f.default,
+        )
+        for f in dataclasses.fields(record)
+    )
+
+
+CLIP_FIELDS = _fields_of(Clip, required=False)
+FADE_FIELDS = _fields_of(Fade, required=True)
+_FIELDS = {Clip: CLIP_FIELDS, Fade: FADE_FIELDS}
+
+# Writing: a clip as a dict of JSON values (a variant's clips), or the project's clips as lines of
+# one %-template, filled column by column (each column one C loop over the clips: a loop over the
+# fields in Python per clip takes a quarter longer, which 100,000 clips feel).
+_COMPACT = json.JSONEncoder(allow_nan=False, separators=(", ", ": "))
+_LEAF_PIECE = {str: "%s", float: "%r", bool: "%s"}  # a float's repr is what json writes
+_LEAF_TEXT = {str: _COMPACT.encode, bool: {True: "true", False: "false"}.__getitem__}
+_CLIP_KEYS = tuple(f.key for f in CLIP_FIELDS)
+_CLIP_ATTRS = tuple(f.attr for f in CLIP_FIELDS)
+_FADES_AT = tuple(i for i, f in enumerate(CLIP_FIELDS) if f.kind is Fade)
+_clip_values = attrgetter(*_CLIP_ATTRS)
+_fade_values = attrgetter(*(f.attr for f in FADE_FIELDS))
+_FADE_KEYS = tuple(f.key for f in FADE_FIELDS)
+
+
+class _Line(str):
+    """A value already written as one line of JSON (a clip from _clip_lines)."""
+
+
+def _fade_to_json(fade: Fade) -> dict[str, Any]:
+    return dict(zip(_FADE_KEYS, _fade_values(fade), strict=True))
+
+
+def _clip_to_json(clip: Clip) -> dict[str, Any]:
+    values = list(_clip_values(clip))
+    for i in _FADES_AT:
+        values[i] = _fade_to_json(values[i])
+    return dict(zip(_CLIP_KEYS, values, strict=True))
+
+
+def _line_layout(record: type, path: str = "") -> tuple[str, list[Callable[[Iterable], Iterator]]]:
+    """The record's one-line JSON as a %-template, and for each value in it a function from the
+    clips to that value of each clip as JSON text or a float (its column)."""
+    pieces, columns = [], []
+    for f in _FIELDS[record]:
+        if f.kind in _FIELDS:
+            piece, more = _line_layout(f.kind, f"{path}{f.attr}.")
+        else:
+            piece, more = _LEAF_PIECE[f.kind], [_column(f"{path}{f.attr}", _LEAF_TEXT.get(f.kind))]
+        pieces.append(f"{_COMPACT.encode(f.key)}: {piece}")
+        columns += more
+    return "{" + ", ".join(pieces) + "}", columns
+
+
+def _column(attr: str, text: Callable[[Any], str] | None) -> Callable[[Iterable], Iterator]:
+    read = attrgetter(attr)
+    if text is None:
+        return lambda clips: map(read, clips)
+    return lambda clips: map(text, map(read, clips))
+
+
+_CLIP_LINE, _CLIP_COLUMNS = _line_layout(Clip)
+
+
+def _clip_lines(clips: Sequence[Clip]) -> list[_Line]:
+    """Each clip's line: the same text as json's encoder gives for _clip_to_json(clip)."""
+    rows = zip(*(column(clips) for column in _CLIP_COLUMNS), strict=True)
+    return list(map(_Line, map(_CLIP_LINE.__mod__, rows)))
+
+
+def _clip_line(clip: Clip) -> _Line:
+    """One clip's line (what the tests hold against json's encoder)."""
+    return _clip_lines((clip,))[0]
+
+
+# Reading: the fast path for clips as the editor writes them, and the field-by-field checks.
+_clip_items = itemgetter(*_CLIP_KEYS)
+_plain_numbers = itemgetter(*(i for i, f in enumerate(CLIP_FIELDS) if f.kind is float))
+_PLAIN_TYPES = tuple(dict if f.kind is Fade else f.kind for f in CLIP_FIELDS)
+_fade_items = itemgetter(*(f.key for f in FADE_FIELDS))
+_PLAIN_FADE_TYPES = tuple(f.kind for f in FADE_FIELDS)
+_NO_FADE = Fade()
+_NO_FADE_JSON = _fade_to_json(_NO_FADE)
+
+
+def _plain_clip(obj: Any) -> Clip | None:
+    """A clip as the editor saves it (every field present, plain finite floats), built without
+    the per-field checks; None for anything else, which _clip then checks field by field.
+
+    Non-finite numbers are caught by one isfinite of their sum (inf or NaN if any one is; an
+    overflowing sum of finite numbers only sends the clip down the slow path).
+    """
+    if type(obj) is not dict or len(obj) != len(CLIP_FIELDS):
+        return None
+    try:
+        values = _clip_items(obj)
+    except KeyError:
+        return None
+    if tuple(map(type, values)) != _PLAIN_TYPES or not math.isfinite(sum(_plain_numbers(values))):
+        return None
+    attrs = dict(zip(_CLIP_ATTRS, values, strict=True))
+    try:
+        for i in _FADES_AT:
+            attrs[_CLIP_ATTRS[i]] = _plain_fade(values[i])
+        return Clip.from_checked(attrs)
+    except (EditError, NotPlain):
+        return None
+
+
+def _plain_fade(obj: dict) -> Fade:
+    if obj == _NO_FADE_JSON:
+        return _NO_FADE
+    if len(obj) == len(FADE_FIELDS):
+        try:
+            values = _fade_items(obj)
+        except KeyError:
+            raise NotPlain from None
+        if tuple(map(type, values)) == _PLAIN_FADE_TYPES:
+            return Fade(*values)
+    raise NotPlain
+
+
+def _number(obj: Any, key: str, where: str, default: Any) -> float:
+    return fields.number(obj, key, where, None if default is dataclasses.MISSING else default)
+
+
+def _text_field(obj: Any, key: str, where: str, default: Any) -> str:
+    if default is dataclasses.MISSING:
+        return fields.get(obj, key, str, where)
+    return fields.text(obj, key, where, default)
+
+
+def _fade(obj: Any, key: str, where: str, default: Fade) -> Fade:
+    if key not in fields.obj(obj, where):
+        return default
+    where = f"{where}.{key}"
+    fade = fields.obj(obj[key], where)
+    return _built(lambda: _record(Fade, fade, where), where)
+
+
+# How each kind of field is checked as it is read: (obj, key, where, default) -> value.
+_READERS: dict[type, Callable[[Any, str, str, Any], Any]] = {
+    float: _number,
+    str: _text_field,
+    bool: fields.flag,
+    Fade: _fade,
+}
+
+
+def _record(record: type, obj: Any, where: str) -> Any:
+    """The record (a Clip or Fade) read field by field, each malformed field a FieldError."""
+    return record(
+        **{f.attr: _READERS[f.kind](obj, f.key, where, f.default) for f in _FIELDS[record]}
+    )
+
+
+def _clip(obj: Any, where: str) -> Clip:
+    return _record(Clip, obj, where)
 
 
 # --- writing -----------------------------------------------------------------------------------
@@ -91,32 +277,12 @@ def _tile_to_json(tile: Tile, media: dict[str, Any], entry: MediaEntry) -> dict[
     }
 
 
-def _fade_to_json(fade: Fade) -> dict[str, Any]:
-    return {"length": fade.length, "shape": fade.shape}
-
-
-def _clip_to_json(clip: Clip) -> dict[str, Any]:
-    return {
-        "id": clip.id,
-        "tile": clip.tile_id,
-        "start": clip.start,
-        "source_in": clip.source_in,
-        "source_out": clip.source_out,
-        "stretch": clip.stretch,
-        "stretch_mode": clip.stretch_mode,
-        "loop_phase": clip.loop_phase,
-        "gain": clip.gain,
-        "scale": clip.scale,
-        "offset": clip.offset,
-        "pivot": clip.pivot,
-        "reverse": clip.reverse,
-        "fade_in": _fade_to_json(clip.fade_in),
-        "fade_out": _fade_to_json(clip.fade_out),
-    }
+def _clips_to_json(clips: Sequence[Clip]) -> list[dict[str, Any]]:
+    return [_clip_to_json(c) for c in clips]
 
 
 def _track_to_json(
-    track: Track, clip_json: Callable[[Clip], Any] = _clip_to_json
+    track: Track, clips_json: Callable[[Sequence[Clip]], list] = _clips_to_json
 ) -> dict[str, Any]:
     return {
         "id": track.id,
@@ -126,7 +292,7 @@ def _track_to_json(
         "mute": track.mute,
         "solo": track.solo,
         "full_scale": track.full_scale,
-        "clips": [clip_json(c) for c in track.clips],
+        "clips": clips_json(track.clips),
     }
 
 
@@ -139,11 +305,11 @@ def _id_order(item_id: str) -> tuple[str, int, str]:
 
 def to_json(
     project: Project,
-    clip_json: Callable[[Clip], Any] = _clip_to_json,
+    clips_json: Callable[[Sequence[Clip]], list] = _clips_to_json,
     media_entry: MediaEntry = sample_media.encode,
 ) -> dict[str, Any]:
-    """The project as a JSON-ready dict (schema SCHEMA); clip_json writes each clip of the
-    project's own tracks (a variant's tracks are saved one line each, as plain dicts) and
+    """The project as a JSON-ready dict (schema SCHEMA); clips_json writes the clips of each of
+    the project's own tracks (a variant's tracks are saved one line each, as plain dicts) and
     media_entry each recording's samples."""
     media: dict[str, Any] = {}
 
@@ -161,7 +327,7 @@ def to_json(
         "palette": [
             {"name": t.name, "role": t.role, "tiles": list(t.tile_ids)} for t in project.palette
         ],
-        "tracks": [_track_to_json(t, clip_json) for t in project.tracks],
+        "tracks": [_track_to_json(t, clips_json) for t in project.tracks],
         "variants": [
             {
                 "name": v.name,
@@ -177,70 +343,14 @@ def to_json(
 
 
 _OUTLINE_DEPTH = 5  # clips, tile points and deeper: one line each, through json's C encoder
-_COMPACT = json.JSONEncoder(allow_nan=False, separators=(", ", ": "))
-
-
-def _compact_encoder() -> Callable[[Any], str]:
-    """One-line JSON for a value (as _COMPACT.encode), made once per file rather than per value.
-
-    JSONEncoder.encode builds json's C encoder on every call, a third of the time of saving
-    100,000 clips; this builds it once (with its own circular-reference markers) and reuses it.
-    """
-    if c_make_encoder is None:  # a Python built without json's C speedups
-        return _COMPACT.encode
-    encoder = c_make_encoder(
-        {}, _COMPACT.default, encode_basestring_ascii, None, ": ", ", ", False, False, False
-    )
-    return lambda value: "".join(encoder(value, 0))
-
-
-class _Line(str):
-    """A value already written as one line of JSON (a clip from _clip_line)."""
-
-
-_CLIP_LINE = ('{"id": %s, "tile": %s, "start": %r, "source_in": %r, "source_out": %r, '
-              '"stretch": %r, "stretch_mode": %s, "loop_phase": %r, "gain": %r, "scale": %r, '
-              '"offset": %r, "pivot": %r, "reverse": %s, "fade_in": {"length": %r, "shape": %s}, '
-              '"fade_out": {"length": %r, "shape": %s}}')  # fmt: skip
-
-
-def _clip_line(clip: Clip) -> _Line:
-    """The clip's line, the same text as json's encoder gives for _clip_to_json(clip).
-
-    A clip's numbers are always finite floats (Clip checks them), whose repr is what json writes;
-    formatting them into a template skips building 100,000 dicts and encoding them one by one.
-    """
-    text = encode_basestring_ascii
-    fade_in, fade_out = clip.fade_in, clip.fade_out
-    return _Line(
-        _CLIP_LINE
-        % (
-            text(clip.id),
-            text(clip.tile_id),
-            clip.start,
-            clip.source_in,
-            clip.source_out,
-            clip.stretch,
-            text(clip.stretch_mode),
-            clip.loop_phase,
-            clip.gain,
-            clip.scale,
-            clip.offset,
-            clip.pivot,
-            "true" if clip.reverse else "false",
-            fade_in.length,
-            text(fade_in.shape),
-            fade_out.length,
-            text(fade_out.shape),
-        )  # fmt: skip
-    )
 
 
 def _text(value: Any, compact: Callable[[Any], str], depth: int = 0) -> str:
     """JSON indented by one space per level down to _OUTLINE_DEPTH, each deeper value on one line.
 
     json.dumps(indent=...) runs json's pure-Python encoder (8.7 s for 100,000 clips); here Python
-    lays out the few outer levels and the C encoder writes each clip.
+    lays out the few outer levels, each clip is a _Line already, and compact (json's C encoder)
+    writes every other deeper value.
     """
     if type(value) is _Line:
         return value
@@ -256,7 +366,7 @@ def _text(value: Any, compact: Callable[[Any], str], depth: int = 0) -> str:
 def dumps(project: Project, media_entry: MediaEntry = sample_media.encode) -> str:
     """The project file's text."""
     try:
-        return _text(to_json(project, _clip_line, media_entry), _compact_encoder()) + "\n"
+        return _text(to_json(project, _clip_lines, media_entry), _COMPACT.encode) + "\n"
     except (TypeError, ValueError) as exc:
         raise ProjectFileError(f"the project cannot be saved: {exc}") from None
 
@@ -342,87 +452,8 @@ def _built(make: Callable[[], Any], where: str) -> Any:
         raise FieldError(f"{where}: {exc}") from None
 
 
-def _fade_from_json(obj: Any, key: str, where: str) -> Fade:
-    if key not in fields.obj(obj, where):
-        return Fade()
-    where = f"{where}.{key}"
-    fade = fields.obj(obj[key], where)
-    return _built(
-        lambda: Fade(fields.number(fade, "length", where), fields.get(fade, "shape", str, where)),
-        where,
-    )
-
-
 def _clip_from_json(obj: Any, where: str) -> Clip:
     return _plain_clip(obj) or _built(lambda: _clip(obj, where), where)
-
-
-_CLIP_JSON = ("id", "tile", "start", "source_in", "source_out", "stretch", "stretch_mode",
-              "loop_phase", "gain", "scale", "offset", "pivot", "reverse", "fade_in",
-              "fade_out")  # fmt: skip
-_CLIP_FIELDS = tuple("tile_id" if k == "tile" else k for k in _CLIP_JSON)
-_CLIP_VALUES = itemgetter(*_CLIP_JSON)
-_CLIP_NUMBERS = itemgetter(2, 3, 4, 5, 7, 8, 9, 10, 11)
-_PLAIN_TYPES = (str, str, float, float, float, float, str, float, float, float, float, float, bool,
-                dict, dict)  # fmt: skip
-_NO_FADE_JSON = {"length": 0.0, "shape": "linear"}
-_NO_FADE = Fade()
-
-
-def _plain_clip(obj: Any) -> Clip | None:
-    """A clip as the editor saves it (every field present, plain finite floats), built without
-    the per-field checks; None for anything else, which _clip then checks field by field.
-
-    Non-finite numbers are caught by one isfinite of their sum (inf or NaN if any one is; an
-    overflowing sum of finite numbers only sends the clip down the slow path).
-    """
-    if type(obj) is not dict or len(obj) != len(_CLIP_JSON):
-        return None
-    try:
-        values = _CLIP_VALUES(obj)
-    except KeyError:
-        return None
-    if tuple(map(type, values)) != _PLAIN_TYPES or not math.isfinite(sum(_CLIP_NUMBERS(values))):
-        return None
-    fields_ = dict(zip(_CLIP_FIELDS, values, strict=True))
-    try:
-        fields_["fade_in"] = _plain_fade(values[13])
-        fields_["fade_out"] = _plain_fade(values[14])
-        return Clip.from_checked(fields_)
-    except (EditError, _NotPlain):
-        return None
-
-
-class _NotPlain(Exception):
-    """A fade that _plain_fade leaves to the field-by-field reader."""
-
-
-def _plain_fade(obj: dict) -> Fade:
-    if obj == _NO_FADE_JSON:
-        return _NO_FADE
-    if len(obj) == 2 and type(obj.get("length")) is float and type(obj.get("shape")) is str:
-        return Fade(obj["length"], obj["shape"])
-    raise _NotPlain
-
-
-def _clip(obj: Any, where: str) -> Clip:
-    return Clip(
-        id=fields.get(obj, "id", str, where),
-        tile_id=fields.get(obj, "tile", str, where),
-        start=fields.number(obj, "start", where),
-        source_in=fields.number(obj, "source_in", where),
-        source_out=fields.number(obj, "source_out", where),
-        stretch=fields.number(obj, "stretch", where, 1.0),
-        stretch_mode=fields.text(obj, "stretch_mode", where, "squeeze"),
-        loop_phase=fields.number(obj, "loop_phase", where, 0.0),
-        gain=fields.number(obj, "gain", where, 1.0),
-        scale=fields.number(obj, "scale", where, 1.0),
-        offset=fields.number(obj, "offset", where, 0.0),
-        pivot=fields.number(obj, "pivot", where, 0.0),
-        reverse=fields.flag(obj, "reverse", where),
-        fade_in=_fade_from_json(obj, "fade_in", where),
-        fade_out=_fade_from_json(obj, "fade_out", where),
-    )
 
 
 def _track_from_json(obj: Any, where: str) -> Track:
@@ -590,9 +621,7 @@ def _opened(parse: Callable[[], Any], name: str) -> Project:
         with gc_pause.paused():
             doc = parse()
             return from_json(doc)
-    except FieldError as exc:
-        raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
-    except HapticTimelineError as exc:
+    except HapticTimelineError as exc:  # a FieldError among them
         raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
     except (ValueError, UnicodeDecodeError) as exc:
         raise ProjectFileError(f"{name} is not a readable project file ({exc})") from None

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import re
 
-from timeline.errors import HapticTimelineError
-from timeline.plugins.device_protocol import Actuator, DeviceError
+from timeline.errors import DeviceError, HapticTimelineError
+from timeline.plugins.device_protocol import Actuator
 
 PROFILES = {
     "lra-175": Actuator("lra", "lra-175", resonance=175.0, q=10.0, peak_acceleration=1.5),

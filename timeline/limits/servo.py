@@ -26,7 +26,8 @@ from functools import lru_cache
 import numpy as np
 from scipy.linalg import expm
 
-from timeline.plugins.device_protocol import DeviceError, Dynamics
+from timeline.errors import DeviceError
+from timeline.plugins.device_protocol import Dynamics
 
 UNSTABLE = 1.0 + 1e-9  # spectral radius above this grows; the free knob's angle mode sits at 1
 

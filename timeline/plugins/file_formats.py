@@ -19,14 +19,10 @@ from typing import Any, Literal, Protocol, runtime_checkable
 import numpy as np
 
 from timeline import plugins
-from timeline.errors import HapticTimelineError
+from timeline.errors import FormatError
 from timeline.tiles import Tile
 
 Progress = Callable[[float], None]  # called with the fraction done, 0.0 .. 1.0
-
-
-class FormatError(HapticTimelineError):
-    """A file could not be read or written in its format; nothing was changed."""
 
 
 @dataclass(frozen=True)

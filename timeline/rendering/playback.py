@@ -7,10 +7,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from timeline.errors import DeviceError
 from timeline.model import Project
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
-    DeviceError,
     DeviceInfo,
     Hand,
     PositionProgram,

@@ -44,12 +44,13 @@ if TYPE_CHECKING:  # what pyright and IDEs see; at run time each name loads on f
         merge_flags,
     )
 
-# Public names -> the submodule defining them, loaded on first use: the light ones (errors,
-# dynamics, hand, info) do not pull in numpy with the telemetry and programs.
+from timeline.errors import DeviceError, HandSpecError  # what a device plugin raises
+
+# Public names -> the submodule defining them, loaded on first use: the light ones (dynamics,
+# hand, info) do not pull in numpy with the telemetry and programs.
 _EXPORTS = {
     **dict.fromkeys(("Device", "Progress", "device_names", "open_device"), "device"),
     **dict.fromkeys(("ACTUATOR_TYPES", "ESTIMATORS", "Actuator", "Dynamics"), "dynamics"),
-    **dict.fromkeys(("DeviceError", "HandSpecError"), "errors"),
     **dict.fromkeys(("DEFAULT_PUSH_MNM", "DEFAULT_TURN_DEG_PER_S", "HAND_MODES", "Hand"), "hand"),
     **dict.fromkeys(("HAND_MODELS", "HandModel"), "hand_models"),
     **dict.fromkeys(("KINDS", "DeviceInfo"), "info"),

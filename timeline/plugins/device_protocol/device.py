@@ -8,7 +8,7 @@ from types import TracebackType
 from typing import Any
 
 from timeline import plugins
-from timeline.plugins.device_protocol.errors import DeviceError
+from timeline.errors import DeviceError
 from timeline.plugins.device_protocol.hand import Hand
 from timeline.plugins.device_protocol.info import DeviceInfo
 from timeline.plugins.device_protocol.program import Program

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from timeline.plugins.device_protocol.errors import DeviceError
+from timeline.errors import DeviceError
 
 ACTUATOR_TYPES = ("lra", "voice-coil")
 # How a firmware estimates velocity and acceleration: low-passed differences, or an observer

@@ -6,7 +6,7 @@ import math
 import re
 from dataclasses import dataclass
 
-from timeline.plugins.device_protocol.errors import HandSpecError
+from timeline.errors import HandSpecError
 from timeline.plugins.device_protocol.hand_models import DEFAULT_MODEL, HAND_MODELS
 
 HAND_MODES = ("hold", "turn", "push", "free")

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from timeline.errors import DeviceError
 from timeline.plugins.device_protocol.dynamics import Actuator, Dynamics
-from timeline.plugins.device_protocol.errors import DeviceError
 
 KINDS = ("kinesthetic", "vibrotactile")
 

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from timeline.plugins.device_protocol.errors import DeviceError
+from timeline.errors import DeviceError
 
 
 def _as_array(name: str, values: Any) -> np.ndarray:

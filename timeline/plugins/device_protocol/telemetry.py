@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from timeline.plugins.device_protocol.errors import DeviceError
+from timeline.errors import DeviceError
 
 TELEMETRY_COLUMNS = ("time", "angle", "velocity", "torque")
 

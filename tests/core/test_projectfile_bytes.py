@@ -1,0 +1,90 @@
+"""The bytes of a saved project are pinned: a small project of every field against a golden file.
+
+tests/golden/current.htl was written by the code before the clip schema became one table
+(projectfile's CLIP_FIELDS); saving the same project must give the same bytes, and loading the
+file must give the same project. A clip's absent fields take Clip's defaults.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from timeline import edits
+from timeline.edits import markers
+from timeline.errors import FieldError
+from timeline.files import projectfile
+from timeline.model import Clip, Project
+from timeline.signal.vibration_design import Emphasis, VibrationDesign
+from timeline.tiles import SampledTile, generator, spline
+from timeline.tiles.vibration_tile import VibrationTile
+
+GOLDEN = Path(__file__).resolve().parents[1] / "golden" / "current.htl"
+
+
+def small_project() -> Project:
+    """Tracks of four kinds; clips with fades, stretch, gain, scale, pivot, reverse; every tile
+    type; a variant, markers and a loop region."""
+    p = edits.new_project("time", templates=False, title="Pinned bytes", description="fields")
+    p, drive = edits.add_track(p, "drive", "Buzz")
+    p, spring = edits.add_track(p, "stiffness", "Spring")
+    p, damping = edits.add_track(p, "damping", "Damping")
+    p, torque = edits.add_track(p, "mass", "Mass")
+    p = edits.set_track(p, spring, gain=0.5, mute=True)
+    p = edits.set_track(p, torque, solo=True, full_scale=0.25)
+    p, sine = edits.add_tile(p, generator("sine", 0.2, "tap", frequency=175.0))
+    p, swell = edits.add_tile(p, spline([(0.0, 0.0), (0.1, 0.3), (0.4, 1.0)], 0.4, "pchip"))
+    ramp = np.linspace(-1.0, 1.0, 41)
+    p, rec = edits.add_tile(p, SampledTile(ramp, 200.0, "ramp", "ramp.wav"))
+    amplitude, frequency = ((0.0, 0.2), (0.05, 1.0), (0.3, 0.0)), ((0.0, 0.5), (0.3, 0.8))
+    design = VibrationDesign(amplitude, frequency, (Emphasis(0.1, 0.9, 0.4),), 0.3)
+    p, buzz = edits.add_tile(p, VibrationTile(design, "buzz", "buzz.ahap", "linear"))
+    p, a = edits.add_clip(p, drive, sine, 0.0, gain=0.8)
+    p = edits.set_fade(p, a, "in", 0.02, "equal-power")
+    p = edits.set_fade(p, a, "out", 0.05, "s-curve")
+    p, b = edits.add_clip(p, drive, buzz, 0.5, gain=0.6)
+    p, c = edits.add_clip(p, spring, swell, 0.1)
+    p = edits.stretch_clip(p, c, 1.5, "squeeze")
+    p = edits.scale_clip(p, c, 1.25, 0.1)
+    p, d = edits.add_clip(p, damping, rec, 0.05, gain=0.3)
+    p = edits.stretch_clip(p, d, 2.0, "repeat")
+    p = edits.reverse_clip(p, d)
+    p = edits.trim_clip(p, d, 0.1, 0.4)
+    p, e = edits.add_clip(p, torque, sine, 0.3)
+    p = edits.invert_clip(p, e, 0.05)
+    p = edits.set_fade(p, e, "out", 0.1, "exponential")
+    p = edits.save_variant(p, "A")
+    p = edits.set_clip_gain(p, b, 0.9)
+    p = edits.save_variant(p, "B: stronger buzz")
+    p = edits.switch_variant(p, "A")
+    p, _ = markers.add_marker(p, 0.25, "hit")
+    p, _ = markers.add_marker(p, math.pi / 10)
+    return markers.set_loop(p, 0.1, 0.7)
+
+
+def test_saving_writes_the_pinned_bytes(tmp_path):
+    path = tmp_path / "small.htl"
+    projectfile.save(small_project(), path)
+    assert path.read_bytes() == GOLDEN.read_bytes()
+    assert projectfile.dumps(small_project()).encode() == GOLDEN.read_bytes()
+
+
+def test_the_pinned_file_loads_as_the_project():
+    assert projectfile.load(GOLDEN) == small_project()
+
+
+def test_a_clip_of_only_the_required_fields_takes_clips_defaults():
+    required = {"id": "c1", "tile": "tile1", "start": 0.5, "source_in": 0.0, "source_out": 0.2}
+    assert [f.key for f in projectfile.CLIP_FIELDS if f.default is dataclasses.MISSING] == list(
+        required
+    )
+    assert projectfile._clip_from_json(required, "clip") == Clip("c1", "tile1", 0.5, 0.0, 0.2)
+    without_start = {k: v for k, v in required.items() if k != "start"}
+    with pytest.raises(FieldError, match="clip has no 'start'"):
+        projectfile._clip_from_json(without_start, "clip")
+    with pytest.raises(FieldError, match=r"clip.fade_in has no 'shape'"):
+        projectfile._clip_from_json({**required, "fade_in": {"length": 0.1}}, "clip")
