@@ -13,13 +13,12 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # what pyright and IDEs see; at run time each name loads on first use
-    from timeline.analysis.settings import DEFAULTS, AnalysisSettings, SettingsError
-    from timeline.analysis.sound import AnalysisError, SoundAnalysis, analyse, analyse_blocks
+    from timeline.analysis.settings import DEFAULTS, AnalysisSettings
+    from timeline.analysis.sound import SoundAnalysis, analyse, analyse_blocks
 
 _HOMES = {
     "DEFAULTS": "settings",
     "AnalysisSettings": "settings",
-    "SettingsError": "settings",  # the editor's analysis panel imports it from here
     "SoundAnalysis": "sound",
     "analyse": "sound",
     "analyse_blocks": "sound",
@@ -27,9 +26,7 @@ _HOMES = {
 
 __all__ = [
     "DEFAULTS",
-    "AnalysisError",
     "AnalysisSettings",
-    "SettingsError",
     "SoundAnalysis",
     "analyse",
     "analyse_blocks",

@@ -32,9 +32,9 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from timeline.analysis import DEFAULTS, AnalysisSettings, SettingsError
+from timeline.analysis import DEFAULTS, AnalysisSettings
 from timeline.edits.placement import into_gap
-from timeline.errors import HapticTimelineError
+from timeline.errors import HapticTimelineError, SettingsError
 from timeline.files.convert import ConvertedSound, analyse_sound_file, place_converted
 from timeline.gui.file_jobs import FileJob
 

@@ -20,7 +20,6 @@ if TYPE_CHECKING:  # what pyright and IDEs see; at run time each name loads on f
         Actuator,
         Dynamics,
     )
-    from timeline.plugins.device_protocol.errors import DeviceError, HandSpecError
     from timeline.plugins.device_protocol.hand import (
         DEFAULT_PUSH_MNM,
         DEFAULT_TURN_DEG_PER_S,
