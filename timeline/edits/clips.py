@@ -1,7 +1,8 @@
-"""Edits: pure functions from one project state to the next (the undo history keeps the states).
+"""Clip edits: add, remove, move, shift, duplicate, trim, split, stretch, gain, scale and invert
+about a pivot line, reverse, fades, and merge (superimposition into one new tile).
 
-Each refuses bad input with an EditError and then nothing has changed. Functions that create
-something return (project, new_id).
+Pure functions like every edit: bad input raises EditError and nothing has changed; functions
+that create something return (project, new_id). Overlapping clips on one track add.
 
     split_clip at t:   [====A====]      ->  [==A==][==B==]   (joined, renders the same)
     trim_clip:         [====A====]      ->    [==A==]        (content stays where it was)
@@ -14,183 +15,24 @@ import math
 from bisect import bisect_right
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
-from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
+from timeline.edits.palette import add_tile
 from timeline.errors import EditError
 from timeline.model import (
-    DEFAULT_POSITION_RATE,
-    DEFAULT_TIME_RATE,
     Clip,
     Fade,
-    PaletteTab,
     Project,
     Track,
-    Variant,
 )
 from timeline.plugins.track_kinds import track_kind
 from timeline.rendering.clip_render import render_clip
 from timeline.signal.render_presets import preset
 from timeline.tiles import SampledTile, Tile
-from timeline.tiles.templates import template_tiles
 
 _EDGE_TOLERANCE = 1e-9  # relative slack when a source edge lands on the tile's end
-
-
-def new_project(
-    axis: str = "time", rate: float | None = None, templates: bool = True, **metadata: Any
-) -> Project:
-    """An empty project on the time axis (10 kHz) or the position axis (one sample per 0.01 deg).
-
-    With templates, the Templates tab holds one tile of every generator.
-    """
-    if rate is None:
-        rate = DEFAULT_TIME_RATE if axis == "time" else DEFAULT_POSITION_RATE
-    project = Project(axis=axis, rate=rate, metadata=MappingProxyType(metadata))
-    if templates:
-        for tile in template_tiles(axis):
-            project, _ = add_tile(project, tile, "Templates")
-    return project
-
-
-# --- tracks -----------------------------------------------------------------------------------
-
-
-def add_track(
-    project: Project, kind: str, name: str | None = None, **fields: Any
-) -> tuple[Project, str]:
-    """Add a track of a kind usable on the project's axis."""
-    k = track_kind(kind)
-    if project.axis not in k.axes:
-        raise EditError(f"a {project.axis} project cannot have a {kind} track")
-    project, track_id = project.with_id("t")
-    count = sum(t.kind == kind for t in project.tracks) + 1
-    track = Track(id=track_id, kind=kind, name=name or f"{k.label} {count}", **fields)
-    return replace(project, tracks=project.tracks + (track,)), track_id
-
-
-def remove_track(project: Project, track_id: str) -> Project:
-    """Remove a track and its clips."""
-    project.track(track_id)
-    return replace(project, tracks=tuple(t for t in project.tracks if t.id != track_id))
-
-
-def set_track(project: Project, track_id: str, **fields: Any) -> Project:
-    """Change a track's name, gain, mute, solo or full scale."""
-    allowed = {"name", "gain", "mute", "solo", "full_scale"}
-    if set(fields) - allowed:
-        raise EditError(f"a track has no setting {sorted(set(fields) - allowed)[0]!r}")
-    for key in ("gain", "full_scale"):
-        if fields.get(key) is not None and not math.isfinite(float(fields[key])):
-            raise EditError(f"a track's {key.replace('_', ' ')} must be a finite number")
-    return _put_track(project, replace(project.track(track_id), **fields))
-
-
-def move_track(project: Project, track_id: str, index: int) -> Project:
-    """Move a track to a position in the track list."""
-    track = project.track(track_id)
-    rest = [t for t in project.tracks if t.id != track_id]
-    rest.insert(max(0, min(index, len(rest))), track)
-    return replace(project, tracks=tuple(rest))
-
-
-def _put_track(project: Project, track: Track) -> Project:
-    return replace(project, tracks=tuple(track if t.id == track.id else t for t in project.tracks))
-
-
-# --- tiles and the palette ---------------------------------------------------------------------
-
-
-def add_tile(project: Project, tile: Tile, tab: str = "Scratch") -> tuple[Project, str]:
-    """Add a tile to the library and to a palette tab."""
-    project.tab(tab)
-    project, tile_id = project.with_id("tile")
-    palette = tuple(
-        replace(t, tile_ids=t.tile_ids + (tile_id,)) if t.name == tab else t
-        for t in project.palette
-    )
-    return replace(project, tiles=project.tiles.set(tile_id, tile), palette=palette), tile_id
-
-
-def replace_tile(project: Project, tile_id: str, tile: Tile) -> Project:
-    """Put a new shape under a tile id; refused if a clip would play past the new end."""
-    project.tile(tile_id)
-    for track in project.tracks:
-        for clip in track.clips:
-            if clip.tile_id == tile_id and clip.source_out > tile.duration * (1 + 1e-9):
-                raise EditError(
-                    f"a clip plays this tile up to {clip.source_out:.4g}; it cannot end at "
-                    f"{tile.duration:.4g}"
-                )
-    return replace(project, tiles=project.tiles.set(tile_id, tile))
-
-
-def remove_tile(project: Project, tile_id: str) -> Project:
-    """Remove a tile that no clip uses."""
-    project.tile(tile_id)
-    users = [c.id for t in project.tracks for c in t.clips if c.tile_id == tile_id]
-    if users:
-        raise EditError(f"tile {tile_id!r} is used by {len(users)} clip(s); remove them first")
-    palette = tuple(
-        replace(t, tile_ids=tuple(i for i in t.tile_ids if i != tile_id)) for t in project.palette
-    )
-    return replace(project, tiles=project.tiles.delete(tile_id), palette=palette)
-
-
-def rename_tile(project: Project, tile_id: str, name: str) -> Project:
-    """Give a tile a new name."""
-    tile = project.tile(tile_id).with_name(name)
-    return replace(project, tiles=project.tiles.set(tile_id, tile))
-
-
-def add_tab(project: Project, name: str) -> Project:
-    """Add a user tab to the palette."""
-    if any(t.name == name for t in project.palette):
-        raise EditError(f"the palette already has a tab {name!r}")
-    if not name.strip():
-        raise EditError("a palette tab needs a name")
-    return replace(project, palette=project.palette + (PaletteTab(name, "user"),))
-
-
-def rename_tab(project: Project, name: str, new_name: str) -> Project:
-    """Rename a user tab."""
-    tab = project.tab(name)
-    if tab.role != "user":
-        raise EditError(f"the {name} tab cannot be renamed")
-    if any(t.name == new_name for t in project.palette) or not new_name.strip():
-        raise EditError(f"a palette tab cannot be called {new_name!r}")
-    return replace(
-        project,
-        palette=tuple(replace(t, name=new_name) if t is tab else t for t in project.palette),
-    )
-
-
-def remove_tab(project: Project, name: str) -> Project:
-    """Remove a user tab; its tiles stay in the library."""
-    tab = project.tab(name)
-    if tab.role != "user":
-        raise EditError(f"the {name} tab cannot be removed")
-    return replace(project, palette=tuple(t for t in project.palette if t is not tab))
-
-
-def place_tile(project: Project, tile_id: str, tab: str) -> Project:
-    """Show a library tile in a palette tab as well."""
-    project.tile(tile_id)
-    target = project.tab(tab)
-    if tile_id in target.tile_ids:
-        return project
-    return replace(
-        project,
-        palette=tuple(
-            replace(t, tile_ids=t.tile_ids + (tile_id,)) if t is target else t
-            for t in project.palette
-        ),
-    )
-
-
-# --- clips -------------------------------------------------------------------------------------
 
 
 def _check_source(project: Project, clip: Clip) -> Clip:
@@ -531,41 +373,4 @@ def merge_clips(
 def _track_scale(track: Track) -> float:
     return track.gain * (
         track_kind(track.kind).full_scale if track.full_scale is None else track.full_scale
-    )
-
-
-# --- variants ----------------------------------------------------------------------------------
-
-
-def save_variant(project: Project, name: str) -> Project:
-    """Snapshot the current design as a named variant (replacing one of that name)."""
-    if not name.strip():
-        raise EditError("a variant needs a name")
-    snap = Variant(name, project.tracks, project.tiles)
-    others = tuple(v for v in project.variants if v.name != name)
-    return replace(project, variants=others + (snap,), active_variant=name)
-
-
-def switch_variant(project: Project, name: str) -> Project:
-    """Switch the design to a variant, first keeping the current design in the active one.
-
-    The variant's tracks come back with its tile shapes; tiles added since stay in the library
-    (the palette may list them), so nothing the user made disappears.
-    """
-    target = project.variant(name)
-    if project.active_variant and project.active_variant != name:
-        project = save_variant(project, project.active_variant)
-        target = project.variant(name)
-    tiles = project.tiles.update(target.tiles)
-    return replace(project, tracks=target.tracks, tiles=tiles, active_variant=name)
-
-
-def remove_variant(project: Project, name: str) -> Project:
-    """Forget a variant."""
-    project.variant(name)
-    active = None if project.active_variant == name else project.active_variant
-    return replace(
-        project,
-        variants=tuple(v for v in project.variants if v.name != name),
-        active_variant=active,
     )
