@@ -37,6 +37,19 @@ def test_the_editor_fits_a_1280_by_800_screen(window):
     assert (window.width(), window.height()) == (1280, 800)
 
 
+def test_the_editor_opens_inside_a_1280_by_800_screen(window):
+    """Opened on a laptop, the window is shrunk from its 1400x860 default to the free area."""
+    from PySide6.QtCore import QRect
+
+    from timeline.gui.app import fit_to_screen
+
+    window.resize(1400, 860)
+    fit_to_screen(window, QRect(0, 24, 1280, 776))  # below a 24-pixel top panel
+    assert (window.x(), window.y(), window.width(), window.height()) == (0, 24, 1280, 776)
+    fit_to_screen(window, QRect(0, 0, 640, 480))  # smaller than the editor can be
+    assert window.width() == window.minimumSizeHint().width() > 640
+
+
 @pytest.mark.parametrize("name", ["fan_knob", "notification_buzz"])
 def test_screenshot(qtbot, name):
     from timeline.gui.main_window import MainWindow

@@ -4,8 +4,13 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from timeline.files import projectfile
+
+if TYPE_CHECKING:
+    from PySide6.QtCore import QRect
+    from PySide6.QtWidgets import QWidget
 
 ORGANISATION = "haptic-timeline"  # QSettings (recent files) live under this name
 
@@ -21,7 +26,18 @@ def run(path: str | None = None) -> int:
     app.setOrganizationName(ORGANISATION)
     app.setApplicationName("haptic-timeline")
     window = MainWindow(project, Path(path) if path else None)
+    screen = app.primaryScreen()
+    if screen is not None:
+        fit_to_screen(window, screen.availableGeometry())
     window.show()
     window.view.fit()
     window.offer_recovery()
     return app.exec()
+
+
+def fit_to_screen(window: QWidget, available: QRect) -> None:
+    """Shrink the window to the screen's free area (a 1280x800 laptop) and place it there;
+    it never goes below its own minimum size."""
+    size = window.size().boundedTo(available.size()).expandedTo(window.minimumSizeHint())
+    window.resize(size)
+    window.move(available.topLeft())
