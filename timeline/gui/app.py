@@ -26,7 +26,7 @@ def run(path: str | None = None) -> int:
     app.setOrganizationName(ORGANISATION)
     app.setApplicationName("haptic-timeline")
     window = MainWindow(project, Path(path) if path else None)
-    screen = app.primaryScreen()
+    screen = QApplication.primaryScreen()
     if screen is not None:
         fit_to_screen(window, screen.availableGeometry())
     window.show()
