@@ -11,14 +11,25 @@ re-renders proportional to what changed:
   blocks that the changed clips touch, and sums only those again, in the same order a fresh
   render uses, so the result is bit-identical to a render from scratch.
 
+Placement is exact at any time and rate: a render's samples are k/rate for integers k (or
+origin + k/rate for a start off the grid), a clip covers the k from its first sample on, and its
+shape is evaluated in pieces that start at fixed sample counts from the clip's first sample. So a
+render, the same range cut into chunks, export and play give the same bits.
+
 Returned arrays are read-only. A window's buffer is updated in place only when no caller still
 holds an earlier result (its reference count says so); otherwise it is copied first.
+
+One mixer serves every thread: a render takes its windows out of the cache while it works and
+puts them back when it is done, so two threads never sum into one buffer, and a render that fails
+half way (a MemoryError, an overflow) leaves nothing half-summed behind: the next render of that
+window starts fresh. The caches themselves are changed under a lock.
 """
 
 from __future__ import annotations
 
 import math
 import sys
+import threading
 from collections import OrderedDict
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import astuple, dataclass
@@ -30,7 +41,7 @@ import numpy as np
 from timeline.errors import HapticTimelineError, RenderError
 from timeline.model import Clip, Project, Track
 from timeline.plugins.track_kinds import track_kind
-from timeline.rendering.clip_render import clip_sample_range, render_shape
+from timeline.rendering.clip_render import clip_samples, on_grid, render_shape
 from timeline.signal import memory
 from timeline.signal.render_presets import DEFAULT_QUALITY, QualityPreset, preset
 from timeline.tiles import Tile
@@ -42,6 +53,7 @@ PEAK_BYTES_PER_SAMPLE = 48  # measured peak memory of one layer's render, per ou
 # timeline.signal.render_kernels (loading numba and the loops costs ~0.5 s CPU once per process,
 # under a tenth of such a render); smaller renders (every example) keep numpy and never load numba.
 COMPILED_SAMPLES = 50_000_000
+PIECE = 2**16  # about this many samples per piece of a clip's shape (see piece_size)
 
 _V = TypeVar("_V")
 
@@ -59,6 +71,14 @@ class _LRU(Generic[_V]):
         if item is None:
             return None
         self._items.move_to_end(key)
+        return item[0]
+
+    def take(self, key: object) -> _V | None:
+        """Remove and return the value (None if absent)."""
+        item = self._items.pop(key, None)
+        if item is None:
+            return None
+        self.bytes -= item[1]
         return item[0]
 
     def fits(self, nbytes: int) -> bool:
@@ -99,30 +119,69 @@ class MixerStats:
     block_hits: int = 0
     shape_renders: int = 0
 
+    def add(self, other: MixerStats) -> None:
+        """Add another render's counters to these."""
+        for name, value in vars(other).items():
+            setattr(self, name, getattr(self, name) + value)
+
 
 class _Grid(NamedTuple):
-    """The output grid of one render: start + i/rate for i < n, at one quality."""
+    """The output grid of one render: origin + (first + i)/rate for i < n, at one quality.
 
-    start: float
+    origin is 0 when the render starts on the sample grid k/rate (then first is that k), else
+    the render's start (and first counts from it).
+    """
+
+    origin: float
+    first: int
     rate: float
     n: int
     quality: QualityPreset
     quality_key: tuple  # the preset's fields, cheap to hash in cache keys
+    piece: int  # samples per piece of a clip shape at this rate
+
+    @property
+    def start(self) -> float:
+        return self.origin + self.first / self.rate
+
+
+def anchor(start: float, rate: float) -> tuple[float, int]:
+    """(origin, first) of a render starting at `start`: (0, k) when start is on the grid k/rate."""
+    k = on_grid(start, 0.0, rate)
+    return (start, 0) if k is None else (0.0, k)
+
+
+def piece_size(rate: float) -> int:
+    """Samples per piece of a clip shape: near PIECE, and for an integer rate a multiple of its
+    odd part, so a piece's start j * size / rate in the clip is an exact binary number."""
+    if rate != math.floor(rate) or rate > 2**52:
+        return PIECE
+    size = int(rate)
+    while size % 2 == 0:
+        size //= 2
+    while size * 2 <= PIECE:
+        size *= 2
+    return size
 
 
 class _Placed:
-    """A clip placed in a window: output samples [i0, i1) = weight * shape values."""
+    """A clip placed in a window: output samples [i0, i1) = weight * shape values.
 
-    __slots__ = ("clip", "tile", "shape", "weight", "i0", "i1", "pos0")
+    The clip's own samples are [c0, c0 + length) in the window's indices (c0 may be negative);
+    its shape is evaluated in pieces of grid.piece samples from c0, the first at offset `phase`.
+    """
+
+    __slots__ = ("clip", "tile", "shape", "weight", "i0", "i1", "c0", "length", "phase")
 
     def __init__(self, clip: Clip, tile: Tile, shape: tuple, weight: float, i0: int, i1: int,
-                 pos0: float) -> None:  # fmt: skip
+                 c0: int, length: int, phase: float) -> None:  # fmt: skip
         self.clip, self.tile, self.shape, self.weight = clip, tile, shape, weight
-        self.i0, self.i1, self.pos0 = i0, i1, pos0
+        self.i0, self.i1, self.c0, self.length, self.phase = i0, i1, c0, length, phase
 
     def same(self, other: _Placed) -> bool:
         return (self.shape == other.shape and self.weight == other.weight
-                and self.i0 == other.i0 and self.i1 == other.i1)  # fmt: skip
+                and self.i0 == other.i0 and self.i1 == other.i1
+                and self.c0 == other.c0)  # fmt: skip
 
 
 @dataclass
@@ -217,12 +276,14 @@ class Mixer:
     def __init__(self, cache_bytes: int = 512 * 2**20) -> None:
         self._shapes: _LRU[np.ndarray] = _LRU(cache_bytes)
         self._windows: _LRU[_Window] = _LRU(cache_bytes)
+        self._lock = threading.Lock()  # held while the caches or stats change, never to render
         self.stats = MixerStats()
 
     def clear(self) -> None:
         """Forget all cached renders."""
-        self._shapes.clear()
-        self._windows.clear()
+        with self._lock:
+            self._shapes.clear()
+            self._windows.clear()
 
     def render(
         self,
@@ -239,17 +300,32 @@ class Mixer:
         Context tracks (the source sound) are never part of it; with `context` only they are
         rendered, for listening. The arrays are read-only; copy one to change it.
         """
-        q = preset(quality)
         rate = float(project.rate if rate is None else rate)
         stop = float(project.duration if stop is None else stop)
         start = float(start)
         n = grid_length(start, stop, rate)
+        return self._render(project, *anchor(start, rate), n, rate, quality, tracks, context)
+
+    def _render(
+        self,
+        project: Project,
+        origin: float,
+        first: int,
+        n: int,
+        rate: float,
+        quality: str | QualityPreset,
+        tracks: Iterable[str] | None,
+        context: bool = False,
+    ) -> dict[str, np.ndarray]:
+        """Render the n samples origin + (first + i)/rate (see render)."""
+        q = preset(quality)
         if n > MAX_SAMPLES:
             raise HapticTimelineError(
                 f"{n} samples is too many for one render; use render_chunks for long ranges"
             )
-        grid = _Grid(start, rate, n, q, astuple(q))
+        grid = _Grid(origin, first, rate, n, q, astuple(q), piece_size(rate))
         tile_keys: dict[str, str] = {}
+        stats = MixerStats()
         result = {}
         layers = _layers(project, tracks, context)
         memory.require(
@@ -257,15 +333,17 @@ class Mixer:
             f"rendering {n} samples of {len(layers)} layer(s)",
             "render a shorter range or at a lower rate",
         )
-        for kind_id, layer in layers.items():
-            key = (kind_id, start, rate, n, grid.quality_key)
-            try:
-                out = self._mix(project, layer, key, grid, tile_keys)
-            except RenderError as exc:
-                self._windows.pop(key)
-                raise RenderError(f"the {kind_id} layer is {exc} {project.unit}"
-                                  " (amplitudes too large to add up)") from None  # fmt: skip
-            result[kind_id] = out
+        try:
+            for kind_id, layer in layers.items():
+                key = (kind_id, origin, first, rate, n, grid.quality_key)
+                try:
+                    result[kind_id] = self._mix(project, layer, key, grid, tile_keys, stats)
+                except RenderError as exc:
+                    raise RenderError(f"the {kind_id} layer is {exc} {project.unit}"
+                                      " (amplitudes too large to add up)") from None  # fmt: skip
+        finally:
+            with self._lock:
+                self.stats.add(stats)
         return result
 
     def render_chunks(
@@ -282,11 +360,12 @@ class Mixer:
         rate = float(project.rate if rate is None else rate)
         stop = float(project.duration if stop is None else stop)
         total = grid_length(start, stop, rate)
+        origin, first = anchor(float(start), rate)
         step = max(1, int(round(chunk * rate)))
-        for first in range(0, total, step):
-            count = min(step, total - first)
-            t0 = start + first / rate
-            yield t0, self.render(project, t0, t0 + count / rate, rate, quality, tracks)
+        for done in range(0, total, step):
+            count = min(step, total - done)
+            layers = self._render(project, origin, first + done, count, rate, quality, tracks)
+            yield start + done / rate, layers
 
     # --- one layer in one window ---------------------------------------------------------------
 
@@ -297,9 +376,16 @@ class Mixer:
         key: tuple,
         grid: _Grid,
         tile_keys: dict[str, str],
+        stats: MixerStats,
     ) -> np.ndarray:
+        """One layer on the grid: the cached window brought up to date, or a new one.
+
+        The window is out of the cache while this runs (another thread rendering the same window
+        meanwhile starts its own) and goes back only when it is complete.
+        """
         n = grid.n
-        window = self._windows.get(key)
+        with self._lock:
+            window = self._windows.take(key)
         if window is None:
             window = _Window(n)
         order = tuple(track.id for track, _ in layer)
@@ -312,16 +398,16 @@ class Mixer:
             old = window.parts.get(track.id)
             if old is not None and self._unchanged(old, track, scale, project, tile_keys):
                 parts[track.id] = old
-                self.stats.clip_hits += len(old.placed)
+                stats.clip_hits += len(old.placed)
                 continue
             before = {} if old is None else {id(p.clip): p for p in old.placed}
             parts[track.id] = part = self._place(project, track, scale, grid, tile_keys, before)
             for p in part.placed:
                 q = before.pop(id(p.clip), None)
                 if q is not None and p.same(q):
-                    self.stats.clip_hits += 1
+                    stats.clip_hits += 1
                     continue
-                self.stats.clip_renders += 1
+                stats.clip_renders += 1
                 if not full:
                     dirty.append((p.i0, p.i1))
                     if q is not None:
@@ -338,17 +424,18 @@ class Mixer:
             window.starts = np.concatenate([part.starts for part in chosen])
             window.ends = np.concatenate([part.ends for part in chosen])
         blocks = _blocks(dirty, n)
-        self.stats.block_hits += -(-n // BLOCK) - len(blocks)
+        stats.block_hits += -(-n // BLOCK) - len(blocks)
         if blocks:
             if sys.getrefcount(window.buffer) > 2:  # a caller still holds the last result
                 window.buffer = window.buffer.copy()
             window.buffer.setflags(write=True)
             try:
-                self._sum(window, blocks, grid)
+                self._sum(window, blocks, grid, stats)
             finally:
                 window.buffer.setflags(write=False)
         out = _in_dtype(window, blocks, grid)
-        self._windows.put(key, window, window.nbytes)
+        with self._lock:
+            self._windows.put(key, window, window.nbytes)
         return out
 
     def _unchanged(
@@ -373,76 +460,115 @@ class Mixer:
         before: dict[int, _Placed],
     ) -> _Part:
         """Place a track's clips on the grid, reusing `before` placements of the same clips."""
-        start, rate, n = grid.start, grid.rate, grid.n
+        origin, first, rate, n = grid.origin, grid.first, grid.rate, grid.n
+        start = grid.start
         placed = []
         used = {}
         # clips wholly outside the window are never placed: visit only those that may touch it
-        for clip in track.clips_between(start, start + n / rate, 2.0 / rate):
+        for clip in track.clips_between(start, origin + (first + n) / rate, 2.0 / rate):
             tile = project.tile(clip.tile_id)
             old = before.get(id(clip))
             if old and old.clip is clip and old.tile is tile and old.weight == scale * clip.gain:
                 used[clip.tile_id] = (tile, old.shape[0])
                 placed.append(old)
                 continue
-            i0, i1 = clip_sample_range(clip, start, rate, n)
+            c0, c1, phase = clip_samples(clip, origin, rate)
+            c0, c1 = c0 - first, c1 - first
+            i0, i1 = max(c0, 0), min(max(c1, 0), n)
             if i1 <= i0:
                 continue
             tile_key = _tile_key(project, clip.tile_id, tile_keys)
             used[clip.tile_id] = (tile, tile_key)
-            pos0 = (start + i0 / rate) - clip.start
             fi, fo = clip.fade_in, clip.fade_out
             shape = (tile_key, clip.source_in, clip.source_out, clip.stretch, clip.stretch_mode,
                      clip.loop_phase, clip.scale, clip.offset, clip.reverse, fi.length, fi.shape,
-                     fo.length, fo.shape, pos0, i1 - i0, rate, grid.quality_key)  # fmt: skip
-            placed.append(_Placed(clip, tile, shape, scale * clip.gain, i0, i1, pos0))
+                     fo.length, fo.shape, phase, c1 - c0, rate, grid.quality_key)  # fmt: skip
+            placed.append(_Placed(clip, tile, shape, scale * clip.gain, i0, i1, c0, c1 - c0,
+                                  phase))  # fmt: skip
         starts = np.array([p.i0 for p in placed], dtype=np.int64)
         ends = np.array([p.i1 for p in placed], dtype=np.int64)
         return _Part(track.clips, scale, used, placed, starts, ends)
 
-    def _sum(self, window: _Window, blocks: list[int], grid: _Grid) -> None:
+    def _sum(self, window: _Window, blocks: list[int], grid: _Grid, stats: MixerStats) -> None:
         """Sum the listed blocks again from their clips, in track and clip order."""
         out = window.buffer
         with np.errstate(over="ignore", invalid="ignore"):  # overflow is reported as one error
             if len(blocks) == -(-grid.n // BLOCK):
-                self._sum_all(out, window, grid)
+                self._sum_all(out, window, grid, stats)
                 return
             members = _members(window, blocks, grid.n)
             adder = _adder(window.starts, window.ends)
             scratch = np.empty(BLOCK)
-            values: dict[tuple, np.ndarray] = {}  # shapes in use, dropped after their last block
+            pieces: dict[tuple, np.ndarray] = {}  # pieces in use, dropped after their last block
             for b in blocks:
                 lo, hi = b * BLOCK, min((b + 1) * BLOCK, grid.n)
                 acc = out[lo:hi]
                 acc.fill(0.0)
                 for p in members[b]:
-                    x = values.get(p.shape)
-                    if x is None:
-                        x = values[p.shape] = self._shape_values(p, grid)
-                    a, z = max(p.i0, lo), min(p.i1, hi)
-                    adder(out[a:z], x[a - p.i0 : z - p.i0], p.weight, scratch)
-                    if p.i1 <= hi:
-                        values.pop(p.shape, None)
+                    self._add(out, p, max(p.i0, lo), min(p.i1, hi), grid, adder, scratch, stats,
+                              pieces)  # fmt: skip
                 _check_finite(acc, grid, lo)
-        self.stats.block_sums += len(blocks)
+        stats.block_sums += len(blocks)
 
-    def _sum_all(self, out: np.ndarray, window: _Window, grid: _Grid) -> None:
+    def _sum_all(self, out: np.ndarray, window: _Window, grid: _Grid, stats: MixerStats) -> None:
         """Sum every clip into the whole buffer: per sample the same order as block by block."""
         out.fill(0.0)
         scratch = np.empty(BLOCK)
         adder = _adder(window.starts, window.ends)
         for p in window.placed:  # each sample's sum rounds alike however a clip is cut
-            adder(out[p.i0 : p.i1], self._shape_values(p, grid), p.weight, scratch)
+            self._add(out, p, p.i0, p.i1, grid, adder, scratch, stats)
         _check_finite(out, grid, 0)
-        self.stats.block_sums += -(-grid.n // BLOCK)
+        stats.block_sums += -(-grid.n // BLOCK)
 
-    def _shape_values(self, p: _Placed, grid: _Grid) -> np.ndarray:
-        values = self._shapes.get(p.shape)
+    def _add(
+        self,
+        out: np.ndarray,
+        p: _Placed,
+        a: int,
+        z: int,
+        grid: _Grid,
+        adder: Callable,
+        scratch: np.ndarray,
+        stats: MixerStats,
+        pieces: dict[tuple, np.ndarray] | None = None,
+    ) -> None:
+        """out[a:z] += weight * the clip's values there, piece by piece.
+
+        `pieces` keeps the pieces in use between calls; a piece is dropped from it once z passes
+        its end.
+        """
+        size = grid.piece
+        j = (a - p.c0) // size
+        while a < z:
+            lo = p.c0 + j * size
+            hi = min(lo + size, p.c0 + p.length)
+            key = (p.shape, j)
+            x = None if pieces is None else pieces.get(key)
+            if x is None:
+                x = self._piece(p, j, grid, stats)
+                if pieces is not None and hi > z:
+                    pieces[key] = x
+            elif hi <= z:
+                del pieces[key]
+            e = min(z, hi)
+            adder(out[a:e], x[a - lo : e - lo], p.weight, scratch)
+            a, j = e, j + 1
+
+    def _piece(self, p: _Placed, j: int, grid: _Grid, stats: MixerStats) -> np.ndarray:
+        """Piece j of a clip's shape: grid.piece samples from sample j * grid.piece of the clip."""
+        key = (p.shape, j)
+        with self._lock:
+            values = self._shapes.get(key)
         if values is not None:
             return values
-        self.stats.shape_renders += 1
-        values = render_shape(p.clip, p.tile, p.pos0, grid.rate, p.i1 - p.i0, grid.quality)
+        stats.shape_renders += 1
+        size = grid.piece
+        n = min(size, p.length - j * size)
+        values = render_shape(p.clip, p.tile, p.phase + j * size / grid.rate, grid.rate, n,
+                              grid.quality)  # fmt: skip
         values.setflags(write=False)
-        self._shapes.put(p.shape, values, values.nbytes)
+        with self._lock:
+            self._shapes.put(key, values, values.nbytes)
         return values
 
 
