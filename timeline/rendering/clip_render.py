@@ -41,14 +41,19 @@ def clip_samples(clip: Clip, origin: float, rate: float) -> tuple[int, int, floa
     """The clip's samples [c0, c1) on the grid origin + k/rate, and the clip offset of c0.
 
     The offset (the sub-sample phase of the clip's first sample) is exactly 0 for a clip on the
-    grid, so chunked and whole renders place and evaluate it alike.
+    grid, so chunked and whole renders place and evaluate it alike. (first_sample for both
+    ends, written out: the mixer places every clip with it.)
     """
-    c1 = first_sample(clip.end, origin, rate)
-    c0 = on_grid(clip.start, origin, rate)
-    if c0 is not None:
+    start, end = clip.start, clip.end
+    x, y = (start - origin) * rate, (end - origin) * rate
+    c0, c1 = round(x), round(y)
+    scale = GRID_TOLERANCE * rate
+    if abs(y - c1) > max(MIN_TOLERANCE, scale * (abs(end) + abs(origin))):
+        c1 = math.ceil(y)
+    if abs(x - c0) <= max(MIN_TOLERANCE, scale * (abs(start) + abs(origin))):
         return c0, c1, 0.0
-    c0 = math.ceil((clip.start - origin) * rate)
-    return c0, c1, (origin + c0 / rate) - clip.start
+    c0 = math.ceil(x)
+    return c0, c1, (origin + c0 / rate) - start
 
 
 def clip_sample_range(clip: Clip, t0: float, rate: float, n: int) -> tuple[int, int]:
