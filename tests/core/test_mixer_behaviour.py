@@ -1,0 +1,162 @@
+"""Mixer behaviours that a cached re-render must keep: block edges, summing order, solo and mute.
+
+Each re-render is compared with a render by a new Mixer (nothing cached), and values with sums
+written out by hand.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from timeline import edits
+from timeline.errors import HapticTimelineError
+from timeline.model import Project
+from timeline.rendering.mixer import BLOCK, Mixer, grid_length, piece_size
+from timeline.tiles import SampledTile
+
+RATE = 10_000.0
+FULL = 0.18  # a drive track's full scale
+
+
+def project_of(tracks: list[list[tuple[int, np.ndarray]]]) -> Project:
+    """Drive tracks, each with clips (first sample, samples at RATE) on the grid."""
+    project = edits.new_project(rate=RATE, templates=False)
+    for clips in tracks:
+        project, track = edits.add_track(project, "drive")
+        for first, data in clips:
+            project, tile = edits.add_tile(project, SampledTile(np.asarray(data, float), RATE))
+            project, _ = edits.add_clip(project, track, tile, first / RATE)
+    return project
+
+
+def drive(mixer: Mixer, project: Project, n: int) -> np.ndarray:
+    return mixer.render(project, 0.0, n / RATE)["drive"]
+
+
+@pytest.mark.parametrize("first", [BLOCK - 1, BLOCK, 2 * BLOCK - 2, 3 * BLOCK - 1])
+def test_an_edit_across_a_block_edge_updates_both_blocks(first: int) -> None:
+    n = 4 * BLOCK
+    project = project_of([[(first, [1.0, 2.0, 3.0])], [(10, [5.0])]])
+    mixer = Mixer()
+    drive(mixer, project, n)
+    clip = project.tracks[0].clips[0]
+    louder = edits.set_clip_gain(project, clip.id, 2.0)
+    out = drive(mixer, louder, n)
+    want = np.zeros(n)
+    want[10] = 5.0 * FULL
+    want[first : first + 3] = np.array([1.0, 2.0, 3.0]) * (FULL * 2.0)
+    assert np.array_equal(out, want)
+    moved = edits.move_clip(louder, clip.id, (first + 1) / RATE)
+    out = drive(mixer, moved, n)
+    assert np.array_equal(out, drive(Mixer(), moved, n))
+    assert out[first] == 0.0 and out[first + 3] == 3.0 * FULL * 2.0
+
+
+def test_reordering_tracks_sums_in_the_new_order() -> None:
+    # float addition is not associative, so the track order shows in the bits
+    a, b, c = FULL * 1.0, FULL * 1e-17, FULL * -1.0
+    assert (a + b) + c != (a + c) + b
+    n = 100
+    project = project_of([[(0, [1.0] * 50)], [(0, [1e-17] * 50)], [(0, [-1.0] * 50)]])
+    mixer = Mixer()
+    assert drive(mixer, project, n)[0] == (a + b) + c
+    reordered = edits.move_track(project, project.tracks[2].id, 1)
+    out = drive(mixer, reordered, n)
+    assert np.array_equal(out, drive(Mixer(), reordered, n))
+    assert out[0] == (a + c) + b
+    assert not out[50:].any()
+
+
+def test_solo_and_mute_choose_the_tracks_that_sound() -> None:
+    n = 10
+    project = project_of([[(0, [1.0])], [(1, [2.0])], [(2, [4.0])]])
+    a, b, c = (t.id for t in project.tracks)
+    mixer = Mixer()
+    assert drive(mixer, project, n)[:3].tolist() == [FULL, 2 * FULL, 4 * FULL]
+    solo = edits.set_track(project, b, solo=True)
+    assert drive(mixer, solo, n)[:3].tolist() == [0.0, 2 * FULL, 0.0]
+    muted = edits.set_track(edits.set_track(solo, c, solo=True), b, mute=True)
+    assert drive(mixer, muted, n)[:3].tolist() == [0.0, 0.0, 4 * FULL]
+    only_a = mixer.render(project, 0.0, n / RATE, tracks=[a])["drive"]
+    assert only_a[:3].tolist() == [FULL, 0.0, 0.0]
+    with pytest.raises(HapticTimelineError, match="no track named 'x'"):
+        mixer.render(project, 0.0, n / RATE, tracks=["x"])
+
+
+def test_held_results_never_change_and_a_cleared_mixer_renders_alike() -> None:
+    n = 2 * BLOCK
+    project = project_of([[(5, [1.0, 1.0])]])
+    mixer = Mixer()
+    held = drive(mixer, project, n)
+    kept = held.copy()
+    louder = edits.set_clip_gain(project, project.tracks[0].clips[0].id, 3.0)
+    again = drive(mixer, louder, n)
+    assert np.array_equal(held, kept) and again[5] == 3.0 * FULL
+    assert not held.flags.writeable and not again.flags.writeable
+    mixer.clear()
+    assert np.array_equal(drive(mixer, louder, n), again)
+
+
+def test_a_clip_longer_than_a_piece_is_whole_and_exact() -> None:
+    size = piece_size(RATE)
+    assert size % 625 == 0 and (size / RATE) * RATE == size  # pieces start on exact offsets
+    data = 1.0 + np.arange(2 * size + 7) % 97
+    n = 2 * size + 20
+    project = project_of([[(3, data)]])
+    out = drive(Mixer(), project, n)
+    want = np.zeros(n)
+    want[3 : 3 + len(data)] = data * FULL
+    assert np.array_equal(out, want)
+    late = Mixer().render(project, (size - 5) / RATE, n / RATE)["drive"]
+    assert np.array_equal(late, want[size - 5 :])
+
+
+def test_piece_sizes_are_multiples_of_the_rates_odd_part() -> None:
+    assert piece_size(10_000.0) == 40_000  # 625 * 64
+    assert piece_size(192_000.0) == 48_000  # 375 * 128
+    assert piece_size(44_100.0) == 44_100
+    assert piece_size(1024.0) == 2**16
+    assert piece_size(12.5) == 2**16  # not an integer rate
+
+
+def test_grid_length_counts_samples_and_refuses_nonsense() -> None:
+    assert grid_length(0.0, 1.0, RATE) == 10_000
+    assert grid_length(0.25, 0.25, RATE) == 0
+    for start, stop, rate in ((0.0, 1.0, 0.0), (1.0, 0.0, RATE), (0.0, float("nan"), RATE)):
+        with pytest.raises(HapticTimelineError):
+            grid_length(start, stop, rate)
+
+
+def test_chunks_join_to_the_render_with_its_defaults_and_chosen_tracks() -> None:
+    project = project_of([[(3, [1.0, 2.0])], [(6, [4.0] * 9)]])
+    first = project.tracks[0].id
+    mixer = Mixer()
+    whole = mixer.render(project)["drive"]
+    assert len(whole) == 15 and whole[3] == FULL
+    pieces = list(mixer.render_chunks(project, chunk=4 / RATE))
+    assert [t0 for t0, _ in pieces] == [0.0, 4 / RATE, 8 / RATE, 12 / RATE]
+    assert np.array_equal(np.concatenate([p["drive"] for _, p in pieces]), whole)
+    tiny = list(mixer.render_chunks(project, chunk=1e-9))  # under a sample: one sample each
+    assert [len(p["drive"]) for _, p in tiny] == [1] * 15
+    chosen = mixer.render_chunks(project, 0.0, 15 / RATE, RATE, tracks=[first], chunk=0.0005)
+    joined = np.concatenate([p["drive"] for _, p in chosen])
+    assert np.array_equal(joined, mixer.render(project, tracks=[first])["drive"])
+    assert joined[3:5].tolist() == [FULL, 2 * FULL] and not joined[5:].any()
+
+
+def test_the_shared_mixer_functions_pass_every_argument_on() -> None:
+    from timeline.rendering import mixer as module
+
+    project = project_of([[(3, [1.0, 2.0])], [(6, [4.0] * 9)]])
+    first = project.tracks[0].id
+    args = (project, 4 / RATE, 12 / RATE, 2 * RATE, "exact", [first])
+    want = Mixer().render(*args)["drive"]
+    assert np.array_equal(module.render(*args)["drive"], want)
+    assert len(want) == 16 and want[0] != 0.0  # 0.4 to 1.2 ms at 20 kHz: only the first track
+    assert np.array_equal(module.render(project)["drive"], Mixer().render(project)["drive"])
+    assert module.render(project, context=True) == {}  # no context track
+    chunks = module.render_chunks(*args, chunk=5 / (2 * RATE))
+    assert np.array_equal(np.concatenate([c["drive"] for _, c in chunks]), want)
+    starts = [t0 for t0, _ in module.render_chunks(project, chunk=5 / RATE)]
+    assert starts == [0.0, 5 / RATE, 10 / RATE]
