@@ -6,13 +6,17 @@ written out by hand.
 
 from __future__ import annotations
 
+import importlib
+import sys
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from timeline import edits
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
-from timeline.rendering.mixer import BLOCK, Mixer, grid_length, piece_size
+from timeline.rendering.mixer import _LRU, BLOCK, Mixer, grid_length, piece_size
 from timeline.tiles import SampledTile
 
 RATE = 10_000.0
@@ -160,3 +164,55 @@ def test_the_shared_mixer_functions_pass_every_argument_on() -> None:
     assert np.array_equal(np.concatenate([c["drive"] for _, c in chunks]), want)
     starts = [t0 for t0, _ in module.render_chunks(project, chunk=5 / RATE)]
     assert starts == [0.0, 5 / RATE, 10 / RATE]
+
+
+def test_the_cache_keeps_the_most_recently_used_within_its_bytes() -> None:
+    cache: _LRU[str] = _LRU(400)  # values of at most a quarter of it are kept
+    for key in "abcd":
+        cache.put(key, key.upper(), 100)
+    assert cache.bytes == 400 and cache.get("a") == "A"  # a is now the most recent
+    cache.put("e", "E", 100)  # over the bound: the least recent (b) goes
+    assert cache.get("b") is None and cache.get("a") == "A" and cache.bytes == 400
+    cache.put("big", "X", 101)  # more than a quarter: not kept
+    assert cache.get("big") is None and cache.bytes == 400
+    assert cache.take("c") == "C" and cache.get("c") is None and cache.bytes == 300
+
+
+def test_a_tracks_own_full_scale_replaces_its_kinds() -> None:
+    project = project_of([[(0, [2.0])]])
+    project = edits.set_track(project, project.tracks[0].id, full_scale=0.25, gain=0.5)
+    assert drive(Mixer(), project, 2).tolist() == [2.0 * 0.5 * 0.25, 0.0]
+
+
+def test_renders_too_long_or_of_the_wrong_axis_say_why() -> None:
+    project = project_of([[(0, [1.0])]])
+    with pytest.raises(HapticTimelineError, match="too many for one render; use render_chunks"):
+        Mixer().render(project, 0.0, (2**31 + 1) / RATE)
+    torque = edits.add_track(edits.new_project("position", templates=False), "torque")[0]
+    wrong = replace(project, tracks=project.tracks + tuple(
+        replace(t, clips=project.tracks[0].clips) for t in torque.tracks))  # fmt: skip
+    with pytest.raises(HapticTimelineError, match="is a torque track, which a time project cannot"):
+        Mixer().render(wrong, 0.0, 0.001)
+
+
+def test_numpy_and_compiled_adds_give_the_same_bits_after_an_edit(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    n = 3 * BLOCK
+    data = np.sin(np.arange(5000) * 0.37) * 1e3
+    project = project_of([[(100, data), (BLOCK - 7, data[:50])], [(2 * BLOCK + 1, data)]])
+    clip = project.tracks[0].clips[1].id
+    edited = edits.set_clip_gain(project, clip, 0.3)
+    results = []
+    for compiled in (False, True):
+        if compiled:  # once loaded, the mixer adds with the compiled loop
+            importlib.import_module("timeline.signal.render_kernels")
+        else:  # the mixer adds with numpy until numba is loaded
+            monkeypatch.delitem(sys.modules, "timeline.signal.render_kernels", raising=False)
+        mixer = Mixer()
+        drive(mixer, project, n)
+        results.append(drive(mixer, edited, n))
+        monkeypatch.undo()
+    assert np.array_equal(results[0], results[1])
+    assert np.array_equal(results[0], drive(Mixer(), edited, n))
+    assert results[0][BLOCK - 7] == data[0] * (0.3 * FULL)
