@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from timeline import edits
-from timeline.errors import HapticTimelineError
+from timeline.errors import HapticTimelineError, RenderError
 from timeline.model import Project
 from timeline.rendering.mixer import _LRU, BLOCK, Mixer, grid_length, piece_size
 from timeline.tiles import SampledTile
@@ -46,7 +46,11 @@ def test_an_edit_across_a_block_edge_updates_both_blocks(first: int) -> None:
     drive(mixer, project, n)
     clip = project.tracks[0].clips[0]
     louder = edits.set_clip_gain(project, clip.id, 2.0)
+    sums, hits = mixer.stats.block_sums, mixer.stats.block_hits
     out = drive(mixer, louder, n)
+    touched = len({first // BLOCK, (first + 2) // BLOCK})  # the blocks of samples first..first+2
+    assert mixer.stats.block_sums - sums == touched
+    assert mixer.stats.block_hits - hits == 4 - touched
     want = np.zeros(n)
     want[10] = 5.0 * FULL
     want[first : first + 3] = np.array([1.0, 2.0, 3.0]) * (FULL * 2.0)
@@ -216,3 +220,33 @@ def test_numpy_and_compiled_adds_give_the_same_bits_after_an_edit(
     assert np.array_equal(results[0], results[1])
     assert np.array_equal(results[0], drive(Mixer(), edited, n))
     assert results[0][BLOCK - 7] == data[0] * (0.3 * FULL)
+
+
+def test_clips_of_one_shape_are_evaluated_once_and_counted() -> None:
+    n = 3 * BLOCK
+    project = project_of([[(10, [1.0, 2.0])]])
+    track, tile = project.tracks[0].id, project.tracks[0].clips[0].tile_id
+    for first in (500, BLOCK + 3, 2 * BLOCK + 9):
+        project, _ = edits.add_clip(project, track, tile, first / RATE)
+    mixer = Mixer()
+    out = drive(mixer, project, n)
+    assert (mixer.stats.shape_renders, mixer.stats.clip_renders) == (1, 4)
+    assert (mixer.stats.block_sums, mixer.stats.block_hits) == (3, 0)
+    assert np.flatnonzero(out).tolist() == [10, 11, 500, 501, BLOCK + 3, BLOCK + 4,
+                                            2 * BLOCK + 9, 2 * BLOCK + 10]  # fmt: skip
+    drive(mixer, project, n)
+    assert (mixer.stats.shape_renders, mixer.stats.clip_hits, mixer.stats.block_hits) == (1, 4, 3)
+
+
+@pytest.mark.parametrize("first", [7, BLOCK + 7])
+def test_an_overflowing_sum_names_the_first_sample_that_is_not_finite(first: int) -> None:
+    project = project_of([[(first, [1e308, 1e308])], [(first + 1, [1e308])]])
+    for track in project.tracks:  # full scale 1: 1e308 + 1e308 overflows
+        project = edits.set_track(project, track.id, full_scale=1.0)
+    with pytest.raises(RenderError, match=f"not a finite number at {(first + 1) / RATE:.6g}"):
+        drive(Mixer(), project, 2 * BLOCK)
+    mixer = Mixer()
+    fine = edits.set_track(project, project.tracks[1].id, mute=True)
+    drive(mixer, fine, 2 * BLOCK)  # cached, then a partial re-sum overflows
+    with pytest.raises(RenderError, match=f"not a finite number at {(first + 1) / RATE:.6g}"):
+        drive(mixer, project, 2 * BLOCK)
