@@ -17,6 +17,7 @@ from timeline import edits
 from timeline.errors import HapticTimelineError, RenderError
 from timeline.model import Project
 from timeline.rendering.mixer import _LRU, BLOCK, Mixer, grid_length, piece_size
+from timeline.signal.render_presets import QualityPreset
 from timeline.tiles import SampledTile
 
 RATE = 10_000.0
@@ -250,3 +251,36 @@ def test_an_overflowing_sum_names_the_first_sample_that_is_not_finite(first: int
     drive(mixer, fine, 2 * BLOCK)  # cached, then a partial re-sum overflows
     with pytest.raises(RenderError, match=f"not a finite number at {(first + 1) / RATE:.6g}"):
         drive(mixer, project, 2 * BLOCK)
+
+
+def test_one_render_counts_every_shape_and_every_layers_blocks() -> None:
+    n = 3 * BLOCK
+    project = project_of([[(10, [1.0, 2.0]), (BLOCK, [3.0])]])
+    project, spring = edits.add_track(project, "stiffness")
+    project, _ = edits.add_clip(project, spring, project.tracks[0].clips[0].tile_id, 0.0)
+    mixer = Mixer()
+    layers = mixer.render(project, 0.0, n / RATE)
+    assert sorted(layers) == ["drive", "stiffness"]
+    assert (mixer.stats.shape_renders, mixer.stats.block_sums) == (2, 6)
+
+
+def test_a_float32_preset_is_the_float64_render_rounded_after_every_edit() -> None:
+    f32 = QualityPreset("f32", "linear", "linear", 1, "float32")
+    n = 3 * BLOCK
+    project = project_of([[(10, [1.0 / 3.0] * 5), (BLOCK + 5, [2.0 / 3.0] * 5)]])
+    mixer = Mixer()
+    for step in range(3):
+        out = mixer.render(project, 0.0, n / RATE, quality=f32)["drive"]
+        want = Mixer().render(project, 0.0, n / RATE, quality="draft")["drive"]
+        assert out.dtype == np.float32 and not out.flags.writeable
+        assert np.array_equal(out, want.astype(np.float32)), step
+        del out  # held by nobody: the next render updates the float32 copy in place
+        clip = project.tracks[0].clips[step % 2].id
+        project = edits.set_clip_gain(project, clip, 1.5 + step)
+
+
+def test_grid_lengths_that_cannot_be_counted_say_so() -> None:
+    with pytest.raises(HapticTimelineError, match="the render rate must be a finite number"):
+        grid_length(0.0, 1.0, float("inf"))
+    with pytest.raises(HapticTimelineError, match="more samples than can be counted"):
+        grid_length(-1e300, 1e300, 1e300)
