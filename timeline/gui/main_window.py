@@ -11,10 +11,12 @@ from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
     QFileDialog,
+    QFrame,
     QGridLayout,
     QMainWindow,
     QMenu,
     QMessageBox,
+    QScrollArea,
     QSplitter,
     QWidget,
 )
@@ -49,6 +51,13 @@ from .transport import Transport
 from .waveform_editor import WaveformEditor, read_range
 
 APP_NAME = "Haptic Timeline"
+DEFAULT_SIZE = (1400, 860)
+# splitter: its starting sizes and which panes take a resized window's room
+SPLITS = {
+    "top": ("top_split", [320, 1080], [0, 1]),
+    "bottom": ("bottom_split", [540, 250, 610], [1, 0, 0]),
+    "main": ("main_split", [560, 260], [3, 1]),
+}
 
 
 def fresh_project(axis: str = "time") -> Project:
@@ -56,6 +65,17 @@ def fresh_project(axis: str = "time") -> Project:
     project = edits.new_project(axis)
     project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
     return project
+
+
+def _scrolled(widget: QWidget) -> QScrollArea:
+    """A pane that scrolls instead of widening the window when its content grows."""
+    area = QScrollArea()
+    area.setWidget(widget)
+    area.setWidgetResizable(True)
+    area.setFrameShape(QFrame.Shape.NoFrame)
+    area.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
+    area.setMinimumWidth(120)
+    return area
 
 
 class MainWindow(QMainWindow):
@@ -86,7 +106,7 @@ class MainWindow(QMainWindow):
         self._update_title()
         self._update_actions()
         self.transport.show_position(0.0, self.doc.project.axis)
-        self.resize(1400, 860)
+        self.resize(*DEFAULT_SIZE)
 
     # --- layout ----------------------------------------------------------------------------
 
@@ -125,21 +145,22 @@ class MainWindow(QMainWindow):
         grid.addWidget(self.headers, 1, 0)
         grid.addWidget(self.view, 1, 1)
 
-        top = QSplitter(Qt.Orientation.Horizontal)
+        self.top_split = top = QSplitter(Qt.Orientation.Horizontal)
         top.addWidget(self.tile_palette)
         top.addWidget(lanes)
-        top.setStretchFactor(1, 1)
-        top.setSizes([320, 1080])
-        bottom = QSplitter(Qt.Orientation.Horizontal)
+        self.bottom_split = bottom = QSplitter(Qt.Orientation.Horizontal)
         bottom.addWidget(self.editor)
-        bottom.addWidget(self.inspector)
+        bottom.addWidget(_scrolled(self.inspector))
         bottom.addWidget(self.transport)
-        bottom.setSizes([540, 250, 610])
-        main = QSplitter(Qt.Orientation.Vertical)
+        self.main_split = main = QSplitter(Qt.Orientation.Vertical)
         main.addWidget(top)
         main.addWidget(bottom)
-        main.setStretchFactor(0, 3)
-        main.setSizes([560, 260])
+        for split, sizes, stretch in SPLITS.values():
+            splitter = getattr(self, split)
+            splitter.setChildrenCollapsible(False)
+            splitter.setSizes(sizes)
+            for index, factor in enumerate(stretch):
+                splitter.setStretchFactor(index, factor)
         self.setCentralWidget(main)
         self.statusBar().addWidget(self.messages, 1)
         self.statusBar().setSizeGripEnabled(False)

@@ -178,7 +178,6 @@ class SoundImport(QObject):
         self.dock = QDockWidget("Sound analysis", window)
         self.dock.setObjectName("soundAnalysisDock")
         self.dock.setWidget(self.panel)
-        self.dock.setMinimumWidth(360)
         window.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, self.dock)
         self.dock.hide()
         self._drop_modifiers = Qt.KeyboardModifier.NoModifier
