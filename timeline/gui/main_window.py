@@ -256,6 +256,7 @@ class MainWindow(QMainWindow):
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
+        self._action(var, "&Delete the active variant", self.delete_variant)
         self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
         self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
         var.addSeparator()
@@ -382,6 +383,15 @@ class MainWindow(QMainWindow):
         """Switch to a named variant (from the Variants menu)."""
         if self.doc.apply("switch variant", edits.switch_variant, name):
             self.messages.show_message(f"now playing variant {name}")
+
+    def delete_variant(self) -> None:
+        """Delete the active variant (the only step that removes one; Ctrl+Z brings it back)."""
+        name = self.doc.project.active_variant
+        if not name:
+            self.messages.show_message("no variant is active: switch to the one to delete", "error")
+            return
+        if self.doc.apply(f"delete variant {name}", edits.remove_variant, name):
+            self.messages.show_message(f"deleted variant {name} (Ctrl+Z brings it back)")
 
     def _range_dropped(self, tab: str, mime) -> None:
         tile_id, a, b = read_range(mime)
