@@ -10,6 +10,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
+    QDialog,
     QFileDialog,
     QFrame,
     QGridLayout,
@@ -34,6 +35,7 @@ from .arrange import Arrange
 from .autosave import Autosaver, Recoverable, recoverable
 from .clipboard import ClipClipboard
 from .document import Document
+from .export_options import ExportOptions
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .findings_overlay import FindingsOverlay
 from .inspector import Inspector
@@ -581,12 +583,16 @@ class MainWindow(QMainWindow):
         path, _ = QFileDialog.getSaveFileName(
             self, "Export", self.dialog_folder(), f"Exportable ({self._extensions('writes')})"
         )
-        if path:
-            self.export_to(Path(path))
+        if not path:
+            return
+        dialog = ExportOptions(self.doc.project, Path(path), self)
+        if dialog.exec() == QDialog.DialogCode.Accepted:
+            self.export_to(Path(path), **dialog.options())
 
-    def export_to(self, path: Path) -> FileJob:
-        """Export in the background; the file appears only when the export has finished."""
-        job = export_job(self.doc.project, path)
+    def export_to(self, path: Path, **options: Any) -> FileJob:
+        """Export in the background (with export_project's options: `rate`, `fixed_point`); the
+        file appears only when the export has finished."""
+        job = export_job(self.doc.project, path, **options)
         self.run_job(job, f"exporting {path.name}…", lambda tmp: self._exported(tmp, path))
         return job
 
