@@ -38,6 +38,7 @@ from .document import Document
 from .export_options import ExportOptions
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .findings_overlay import FindingsOverlay
+from .help import HelpMenu
 from .inspector import Inspector
 from .message_bar import MessageBar
 from .palette import Palette
@@ -267,6 +268,7 @@ class MainWindow(QMainWindow):
 
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
+        self.help = HelpMenu(self)
 
     # --- window state ----------------------------------------------------------------------
 
