@@ -38,6 +38,7 @@ from .document import Document
 from .export_options import ExportOptions
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .findings_overlay import FindingsOverlay
+from .gestures.pivot import PivotGesture
 from .help import HelpMenu
 from .inspector import Inspector
 from .message_bar import MessageBar
@@ -292,6 +293,14 @@ class MainWindow(QMainWindow):
     def _fill_clip_menu(self, menu: QMenu) -> None:
         if not self.doc.selected_clips:
             return
+        at = self.view.menu_at
+        item = self.view.item_at(self.view.mapFromScene(at).toPointF())
+        if item is not None:
+            clip_id = item.clip.id
+            here = menu.addAction("Set &mirror line here")
+            here.setToolTip("The clip's horizontal mirror line at this level (Ctrl+Shift+click)")
+            here.triggered.connect(lambda _=False: PivotGesture(self.view, at, clip_id))
+            menu.addSeparator()
         for action in self.clip_actions:
             menu.addAction(action)
 

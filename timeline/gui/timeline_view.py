@@ -21,7 +21,7 @@ from .gestures.base import Gesture
 from .gestures.fade import FadeGesture
 from .gestures.move import MoveGesture
 from .gestures.palette_drop import PaletteDrop, dropped_tile
-from .gestures.pivot import PivotGesture
+from .gestures.pivot import PivotGesture, places_mirror_line
 from .gestures.rubber_band import RubberBandGesture
 from .gestures.stretch import StretchGesture
 from .gestures.trim import TrimGesture
@@ -59,6 +59,7 @@ class TimelineView(QGraphicsView):
         self.gesture: Gesture | None = None
         self.drop: PaletteDrop | None = None
         self.menu: QMenu | None = None  # the last context menu shown
+        self.menu_at = QPointF()  # the scene point it was asked for at
         self.readout = QLabel(self.viewport())
         self.readout.setStyleSheet(
             "background: rgba(255, 255, 230, 235); border: 1px solid #999; padding: 1px 4px;"
@@ -197,7 +198,7 @@ class TimelineView(QGraphicsView):
             self.gesture = RubberBandGesture(self, pos, add)
             return
         clip_id = item.clip.id
-        if mods & Qt.KeyboardModifier.ControlModifier:
+        if mods & Qt.KeyboardModifier.ControlModifier and not places_mirror_line(mods):
             chosen = list(self.doc.selected_clips)
             chosen.remove(clip_id) if clip_id in chosen else chosen.append(clip_id)
             self.doc.select_clips(chosen)
@@ -211,7 +212,7 @@ class TimelineView(QGraphicsView):
         zone = item.zone(item.mapFromScene(pos))
         clip_id = item.clip.id
         shift = bool(mods & Qt.KeyboardModifier.ShiftModifier)
-        if mods & Qt.KeyboardModifier.AltModifier:
+        if places_mirror_line(mods):
             return PivotGesture(self, pos, clip_id)
         if zone.startswith("fade-"):
             return FadeGesture(self, pos, clip_id, zone[5:])
@@ -244,6 +245,7 @@ class TimelineView(QGraphicsView):
         self.gesture_finished.emit()
 
     def contextMenuEvent(self, event) -> None:
+        self.menu_at = self.mapToScene(event.pos())  # where "Set mirror line here" puts it
         item = self.item_at(QPointF(event.pos()))
         if item is not None:
             zone = item.zone(item.mapFromScene(self.mapToScene(event.pos())))
