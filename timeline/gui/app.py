@@ -28,16 +28,18 @@ def run(path: str | None = None) -> int:
     window = MainWindow(project, Path(path) if path else None)
     screen = QApplication.primaryScreen()
     if screen is not None:
-        fit_to_screen(window, screen.availableGeometry())
+        fit_to_screen(window, screen.availableGeometry(), keep_place=window.restored)
     window.show()
     window.view.fit()
     window.offer_recovery()
     return app.exec()
 
 
-def fit_to_screen(window: QWidget, available: QRect) -> None:
+def fit_to_screen(window: QWidget, available: QRect, keep_place: bool = False) -> None:
     """Shrink the window to the screen's free area (a 1280x800 laptop) and place it there;
-    it never goes below its own minimum size."""
+    it never goes below its own minimum size. With `keep_place` (the size and place remembered
+    from the last session), it moves only if it would not lie wholly inside that area."""
     size = window.size().boundedTo(available.size()).expandedTo(window.minimumSizeHint())
     window.resize(size)
-    window.move(available.topLeft())
+    if not (keep_place and available.contains(window.geometry())):
+        window.move(available.topLeft())

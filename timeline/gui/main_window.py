@@ -30,7 +30,7 @@ from timeline.files import importing, projectfile
 from timeline.model import Project
 from timeline.plugins.file_formats import all_formats
 
-from . import variants
+from . import variants, window_state
 from .arrange import Arrange
 from .autosave import Autosaver, Recoverable, recoverable
 from .clipboard import ClipClipboard
@@ -111,6 +111,7 @@ class MainWindow(QMainWindow):
         self._update_actions()
         self.transport.show_position(0.0, self.doc.project.axis)
         self.resize(*DEFAULT_SIZE)
+        self.restored = window_state.restore(self)  # size, splitters, docks and hand
 
     # --- layout ----------------------------------------------------------------------------
 
@@ -169,6 +170,10 @@ class MainWindow(QMainWindow):
         self.statusBar().addWidget(self.messages, 1)
         self.statusBar().setSizeGripEnabled(False)
         self._menus()
+
+    def splitters(self) -> dict[str, QSplitter]:
+        """The window's splitters by name (what window_state remembers)."""
+        return {name: getattr(self, attribute) for name, (attribute, _, _) in SPLITS.items()}
 
     def _action(
         self,
@@ -693,6 +698,7 @@ class MainWindow(QMainWindow):
         if not self.confirm_discard():
             event.ignore()
             return
+        window_state.save(self)
         self.player.close()
         self.findings.close()
         self.autosaver.discard()
