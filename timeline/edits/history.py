@@ -7,20 +7,32 @@ a step that deleted a variant removes it, when it is redone).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
+from functools import cached_property
 
+from timeline.edits.step_names import step_name
 from timeline.edits.variants import kept_across, removed_names
 from timeline.model import Project, Variant
 
 
 @dataclass(frozen=True)
 class Step:
-    """One entry: the state after an action, its label, and a key that later steps may merge on."""
+    """One entry: the state after an action, its label, and a key that later steps may merge on.
+
+    `label` is the caller's ("move clip"); `name` says what changed ("move 'tap' to 20°"),
+    worked out from the state before when first asked for.
+    """
 
     project: Project
     label: str
     merge_key: object = None
     removed: frozenset[str] = frozenset()  # the variants this step deleted
+    before: Project | None = field(default=None, repr=False, compare=False)
+    described: str = ""  # the name, once known (kept when the step's variants are carried)
+
+    @cached_property
+    def name(self) -> str:
+        return self.described or step_name(self.label, self.before, self.project)
 
 
 class History:
@@ -45,10 +57,10 @@ class History:
             if self._clean == self._index:
                 self._clean = None
             before = self._steps[self._index - 1].project
-            step = Step(project, label, merge_key, removed_names(before, project))
+            step = Step(project, label, merge_key, removed_names(before, project), before)
             self._steps[self._index] = step
         else:
-            step = Step(project, label, merge_key, removed_names(top.project, project))
+            step = Step(project, label, merge_key, removed_names(top.project, project), top.project)
             self._steps.append(step)
             self._index += 1
         return project
@@ -85,6 +97,20 @@ class History:
         return [step.label for step in self._steps]
 
     @property
+    def names(self) -> list[str]:
+        """Every step's name (what it changed), oldest first."""
+        return [step.name for step in self._steps]
+
+    @property
+    def undo_name(self) -> str:
+        """What undo takes back, by name ("" at the first step)."""
+        return self._steps[self._index].name if self.can_undo else ""
+
+    @property
+    def redo_name(self) -> str:
+        return self._steps[self._index + 1].name if self.can_redo else ""
+
+    @property
     def index(self) -> int:
         """Which step the project is at."""
         return self._index
@@ -111,7 +137,7 @@ class History:
                     restored.update({v.name: v for v in before.variants if v.name == name})
         project = kept_across(shown, step.project, frozenset(removed), restored)
         if project is not step.project:
-            self._steps[index] = replace(step, project=project)
+            self._steps[index] = replace(step, project=project, described=step.name)
             if self._clean == index:
                 self._clean = None  # the saved file lacks the variants carried here
         self._index = index

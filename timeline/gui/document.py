@@ -77,9 +77,9 @@ class Document(QObject):
         if not self.history.can_undo:
             self.message.emit("nothing to undo", "info")
             return
-        label = self.history.undo_label
+        name = self.history.undo_name
         self.history.undo()
-        self.message.emit(f"undid {label}", "info")
+        self.message.emit(f"undid {name}", "info")
         self._prune_selection()
         self._emit_changed()
 
@@ -89,7 +89,7 @@ class Document(QObject):
             self.message.emit("nothing to redo", "info")
             return
         self.history.redo()
-        self.message.emit(f"redid {self.history.undo_label}", "info")
+        self.message.emit(f"redid {self.history.undo_name}", "info")
         self._prune_selection()
         self._emit_changed()
 
@@ -97,8 +97,9 @@ class Document(QObject):
         """Jump to a step of the history (Edit > History)."""
         if index == self.history.index:
             return
+        way = "back" if index < self.history.index else "forward"
         self.history.go_to(index)
-        self.message.emit(f"back to: {self.history.labels[index]}", "info")
+        self.message.emit(f"{way} to step {index}: {self.history.names[index]}", "info")
         self._prune_selection()
         self._emit_changed()
 

@@ -292,8 +292,9 @@ class MainWindow(QMainWindow):
         for action in self.clip_actions:
             action.setEnabled(has or action is self.split_action)
         history = self.doc.history
-        self.undo_action.setText(f"&Undo {history.undo_label}".rstrip())
-        self.redo_action.setText(f"&Redo {history.redo_label}".rstrip())
+        undo, redo = (n.replace("&", "&&") for n in (history.undo_name, history.redo_name))
+        self.undo_action.setText(f"&Undo {undo}".rstrip())
+        self.redo_action.setText(f"&Redo {redo}".rstrip())
 
     def _fill_clip_menu(self, menu: QMenu) -> None:
         if not self.doc.selected_clips:
