@@ -211,6 +211,7 @@ class MainWindow(QMainWindow):
         self._action(file, "&Quit", self.close, QKeySequence.StandardKey.Quit)
 
         edit = bar.addMenu("&Edit")
+        edit.aboutToShow.connect(self._name_undo_steps)
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
         self.history_menu = edit.addMenu("&History")
@@ -291,6 +292,10 @@ class MainWindow(QMainWindow):
         has = bool(self.doc.selected_clips)
         for action in self.clip_actions:
             action.setEnabled(has or action is self.split_action)
+
+    def _name_undo_steps(self) -> None:
+        """Undo and Redo say which step they take (named when the Edit menu opens, so a drag
+        does not work out a name on every mouse move)."""
         history = self.doc.history
         undo, redo = (n.replace("&", "&&") for n in (history.undo_name, history.redo_name))
         self.undo_action.setText(f"&Undo {undo}".rstrip())
