@@ -50,3 +50,17 @@ def test_a_first_session_opens_at_the_default_size(qtbot):
     assert not win.restored
     assert (win.width(), win.height()) == (1400, 860)
     assert win.transport.hand.currentText() == "hold"
+
+
+def test_a_remembered_place_on_the_screen_is_kept(window):
+    from PySide6.QtCore import QRect
+
+    from timeline.gui.app import fit_to_screen
+
+    window.resize(1000, 600)
+    window.move(120, 90)
+    fit_to_screen(window, QRect(0, 24, 1280, 776), keep_place=True)
+    assert (window.x(), window.y(), window.width(), window.height()) == (120, 90, 1000, 600)
+    window.move(900, 90)  # remembered from a wider screen: it would stick out
+    fit_to_screen(window, QRect(0, 24, 1280, 776), keep_place=True)
+    assert (window.x(), window.y()) == (0, 24)
