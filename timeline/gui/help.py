@@ -47,14 +47,16 @@ def menu_paths(window: QMainWindow) -> dict[QAction, str]:
 
     def walk(menu: QMenu, path: str) -> None:
         for action in menu.actions():
-            if action.menu() is not None:
-                walk(action.menu(), f"{path} > {plain(action.text())}")
+            sub = action.menu()
+            if isinstance(sub, QMenu):
+                walk(sub, f"{path} > {plain(action.text())}")
             else:
                 found.setdefault(action, path)
 
     for action in window.menuBar().actions():
-        if action.menu() is not None:
-            walk(action.menu(), plain(action.text()))
+        sub = action.menu()
+        if isinstance(sub, QMenu):
+            walk(sub, plain(action.text()))
     return found
 
 

@@ -40,7 +40,7 @@ def restore(window: MainWindow) -> bool:
     t = window.transport
     for key, box in (("model", t.hand_model), ("mode", t.hand)):
         text = settings.value(HAND + key, "", type=str)
-        if text and box.findText(text) >= 0:
+        if isinstance(text, str) and text and box.findText(text) >= 0:
             box.setCurrentText(text)
     value = settings.value(HAND + "value", None)
     if value is not None and t.hand.currentText() in ("turn", "push"):
