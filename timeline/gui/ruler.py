@@ -1,7 +1,9 @@
 """The ruler above the lanes: seconds, or degrees in position mode, with markers and the loop.
 
 Click to place the playhead and cursor; drag to set the loop region (REAPER's ruler drag); drag
-a marker's flag to move it; right-click a marker to rename or delete it, or the loop to clear it.
+the playhead's head to scrub; click a marker's flag to show it in the inspector, drag it to move
+it, double-click it to rename it in place; right-click a marker to rename or delete it, or the
+loop to clear it.
 """
 
 from __future__ import annotations
@@ -11,11 +13,12 @@ from collections.abc import Callable
 
 from PySide6.QtCore import QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPen, QPolygonF
-from PySide6.QtWidgets import QInputDialog, QMenu, QWidget
+from PySide6.QtWidgets import QLineEdit, QMenu, QWidget
 
 from timeline.edits import markers
 
 from .geometry import axis_text, display_factor, display_unit, format_tick, nice_step
+from .inspector_marker import move_marker_tracked
 from .timeline_view import TimelineView
 
 HEIGHT = 40
@@ -38,6 +41,8 @@ class Ruler(QWidget):
         self.setFixedHeight(HEIGHT)
         self.setMouseTracking(True)
         self.ask_name: Callable[[str], str | None] = self._ask_name
+        self.name_edit: QLineEdit | None = None  # the in-place rename box, while open
+        self._renaming: int | None = None
         self._press: float | None = None  # x where the left button went down
         self._marker: int | None = None  # index of the marker being dragged
         self._key: object = None
@@ -114,6 +119,8 @@ class Ruler(QWidget):
         self._press = pos.x()
         self._marker = self.marker_at(pos.x(), pos.y())
         self._key, self._base = object(), self.doc.project
+        if self._marker is not None:
+            self.doc.select_marker(self._marker)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         pos = event.position()
@@ -125,10 +132,12 @@ class Ruler(QWidget):
             return
         u0, u = self.u_of(self._press), self.u_of(pos.x())
         if self._marker is not None:
-            self.doc.apply(
-                "move marker", markers.move_marker, self._marker, u,
+            index = self.doc.apply(
+                "move marker", move_marker_tracked, self._marker, u,
                 base=self._base, merge_key=self._key,
             )  # fmt: skip
+            if index is not None:
+                self.doc.select_marker(index)
             self.doc.message.emit(f"marker at {axis_text(u, self.doc.project.axis)}", "info")
         else:
             self.doc.apply(
@@ -191,14 +200,54 @@ class Ruler(QWidget):
         return menu
 
     def rename(self, index: int) -> None:
-        """Ask for a marker's new name and apply it (one undo step)."""
+        """Rename a marker: in place, in a box over its flag (Enter applies it, one undo step;
+        Escape or clicking elsewhere leaves it)."""
+        self._renaming = index
+        self.doc.select_marker(index)
         name = self.ask_name(self.doc.project.markers[index].name)
         if name:
-            self.doc.apply("rename marker", markers.rename_marker, index, name)
+            self._apply_name(index, name)
+
+    def _apply_name(self, index: int, name: str) -> None:
+        old = self.doc.project.markers[index].name
+        if name.strip() and name.strip() != old:
+            self.doc.apply(f"rename marker {old} to {name.strip()}", markers.rename_marker,
+                           index, name)  # fmt: skip
 
     def _ask_name(self, current: str) -> str | None:
-        name, ok = QInputDialog.getText(self, "Marker", "Name:", text=current)
-        return name if ok else None
+        """Open the in-place box over the flag; it applies the name itself on Enter."""
+        index = self._renaming
+        if index is None:
+            return None
+        self._close_name_edit()
+        box = self.name_edit = QLineEdit(current, self)
+        box.selectAll()
+        box.setToolTip("the marker's name: Enter renames it, Escape leaves it")
+        box.move(int(self.x_of(self.doc.project.markers[index].at) + FLAG_PX + 1), 0)
+        box.resize(max(80, box.sizeHint().width()), TICKS_TOP)
+        box.returnPressed.connect(lambda: self._finish_name(index))
+        box.editingFinished.connect(self._close_name_edit)
+        box.show()
+        box.setFocus()
+        return None
+
+    def _finish_name(self, index: int) -> None:
+        box = self.name_edit
+        if box is not None and index < len(self.doc.project.markers):
+            self._apply_name(index, box.text())
+        self._close_name_edit()
+
+    def _close_name_edit(self) -> None:
+        box, self.name_edit = self.name_edit, None
+        if box is not None:
+            box.hide()
+            box.deleteLater()
+
+    def keyPressEvent(self, event) -> None:
+        if event.key() == Qt.Key.Key_Escape:
+            self._close_name_edit()
+            return
+        super().keyPressEvent(event)
 
     def _tip(self, index: int | None, x: float) -> str:
         axis = self.doc.project.axis

@@ -408,16 +408,19 @@ class WaveformEditor(QWidget):
         self.refresh()
 
     def _typed(self) -> None:
-        if self.point is None or self.tile_id is None:
+        points = self.points()
+        if self.point is None or self.tile_id is None or points is None:
             return
-        self.apply(
-            self.label("set"),
-            tile_shape.move_point,
-            self.point,
-            self.t_box.value() / display_factor(self.doc.project.axis),
-            self.v_box.value(),
-            self.lane,
-        )
+        # a box left as shown keeps the point's exact value (the box rounds it)
+        t, v = points[self.point]
+        factor = display_factor(self.doc.project.axis)
+        if self.t_box.value() != round(t * factor, self.t_box.decimals()):
+            t = self.t_box.value() / factor
+        if self.v_box.value() != round(v, self.v_box.decimals()):
+            v = self.v_box.value()
+        if (t, v) == points[self.point]:
+            return
+        self.apply(self.label("set"), tile_shape.move_point, self.point, t, v, self.lane)
 
     def apply(self, label: str, edit, *args, merge_key: object = None):
         """Edit the shown tile: edit(project, tile_id, *args), one undo step (see edit_tile)."""
