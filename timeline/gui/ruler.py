@@ -24,6 +24,7 @@ from .timeline_view import TimelineView
 HEIGHT = 40
 TICKS_TOP = 20  # marker flags and the loop band above, ticks and labels below
 FLAG_PX = 6.0
+PLAYHEAD_GRAB_PX = 5.0  # a press this near the playhead (below the flags) scrubs it
 LOOP_COLOUR = QColor(56, 160, 90, 70)
 MARKER_COLOUR = QColor("#c07000")
 
@@ -33,6 +34,7 @@ class Ruler(QWidget):
 
     clicked = Signal(float)  # axis position the playhead and cursor moved to
     loop_dragged = Signal()
+    scrubbed = Signal(float)  # where a scrub of the playhead was let go
 
     def __init__(self, view: TimelineView) -> None:
         super().__init__()
@@ -45,6 +47,7 @@ class Ruler(QWidget):
         self._renaming: int | None = None
         self._press: float | None = None  # x where the left button went down
         self._marker: int | None = None  # index of the marker being dragged
+        self._scrub = False  # dragging the playhead rather than a loop region
         self._key: object = None
         self._base = None
         view.zoomed.connect(self.update)
@@ -118,6 +121,8 @@ class Ruler(QWidget):
         pos = event.position()
         self._press = pos.x()
         self._marker = self.marker_at(pos.x(), pos.y())
+        playhead = self.x_of(self.view.scene().playhead_u)
+        self._scrub = self._marker is None and abs(pos.x() - playhead) <= PLAYHEAD_GRAB_PX
         self._key, self._base = object(), self.doc.project
         if self._marker is not None:
             self.doc.select_marker(self._marker)
@@ -131,6 +136,9 @@ class Ruler(QWidget):
         if abs(pos.x() - self._press) < 3:
             return
         u0, u = self.u_of(self._press), self.u_of(pos.x())
+        if self._scrub:
+            self.place(u)  # the playhead, the cursor and the readout follow
+            return
         if self._marker is not None:
             index = self.doc.apply(
                 "move marker", move_marker_tracked, self._marker, u,
@@ -158,6 +166,10 @@ class Ruler(QWidget):
         if event.button() != Qt.MouseButton.LeftButton or self._press is None:
             return
         press, self._press = self._press, None
+        if self._scrub and abs(event.position().x() - press) >= 3:
+            self._scrub = False
+            self.scrubbed.emit(self.u_of(event.position().x()))
+            return
         if abs(event.position().x() - press) >= 3:
             return
         u = self.u_of(event.position().x())
@@ -257,6 +269,8 @@ class Ruler(QWidget):
                 f"marker {m.name} at {axis_text(m.at, axis)}: drag to move, "
                 "double-click to rename, right-click to delete"
             )
+        if abs(x - self.x_of(self.view.scene().playhead_u)) <= PLAYHEAD_GRAB_PX:
+            return "the playhead: drag it to scrub (playing goes on from where you let go)"
         return (
             f"{axis_text(self.u_of(x), axis)}: click to move the playhead, "
             "drag to set the loop region"
