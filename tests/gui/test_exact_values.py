@@ -70,7 +70,8 @@ def flag_point(win, index: int) -> QPoint:
 
 def shot(win, name: str) -> None:
     if os.environ.get("HT_SCREENSHOTS"):
-        QApplication.processEvents()  # fields added to a shown layout appear on the next loop
+        for _ in range(2):  # fields appear, then the scroll area takes their size
+            QApplication.processEvents()
         win.inspector.grab().save(str(Path(os.environ["HT_SCREENSHOTS"]) / f"{name}.png"))
 
 
@@ -154,3 +155,45 @@ def test_a_typed_gain_in_db_and_a_stretch_are_felt_through_the_render(window):
     type_into(page.fade_in, "9")
     assert win.doc.project.find_clip(c1)[1].fade_in.length == 0.0
     assert page.fade_in.value() == 0.0
+
+
+def test_a_typed_clip_gain_is_felt_while_playing(window, qtbot):
+    import numpy as np
+
+    win = window
+    click(win, clip_point(win, win.ids["c1"]))
+    win.transport.loop.setChecked(True)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert win.player.playing
+    stream = win.player.stream
+    version = stream.state.version
+    loud = np.abs(stream.render(win.doc.project, 0.5, 1.5).d).max()
+    type_into(win.inspector.pages["clip"].gain, "0.2")
+    assert stream.state.version == version + 1  # the same path as a drag: the stream follows
+    qtbot.waitUntil(lambda: stream.state.live_version == version + 1, timeout=15_000)
+    quiet = np.abs(stream.render(win.doc.project, 0.5, 1.5).d).max()
+    assert quiet == pytest.approx(0.2 * loud, rel=1e-9)
+    QTest.keyClick(win, Qt.Key.Key_Space)
+
+
+def test_a_marker_is_renamed_in_place_on_the_ruler(knob):
+    win = knob
+    ruler = win.ruler
+    at = flag_point(win, 1)
+    QTest.mouseClick(ruler, LEFT, pos=at)  # QTest's first double-click is lost
+    QTest.mouseDClick(ruler, LEFT, pos=at)
+    box = ruler.name_edit
+    assert box is not None and box.isVisible() and box.text() == "Lo"
+    assert QApplication.activeModalWidget() is None  # no dialog
+    QTest.keyClick(box, Qt.Key.Key_A, CTRL)
+    QTest.keyClicks(box, "Low")
+    QTest.keyClick(box, Qt.Key.Key_Return)
+    assert [m.name for m in win.doc.project.markers] == ["Off", "Low", "Med", "Hi"]
+    assert ruler.name_edit is None and win.doc.history.undo_label == "rename marker Lo to Low"
+    # Escape leaves the name as it was
+    QTest.mouseDClick(ruler, LEFT, pos=flag_point(win, 2))
+    box = ruler.name_edit
+    assert box is not None
+    QTest.keyClicks(box, "zzz")
+    QTest.keyClick(box, Qt.Key.Key_Escape)
+    assert ruler.name_edit is None and win.doc.project.markers[2].name == "Med"

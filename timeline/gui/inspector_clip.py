@@ -27,7 +27,6 @@ class ClipPage(QWidget):
         super().__init__()
         self.doc = doc
         self.title = QLabel()
-        self.title.setWordWrap(True)
         self.start = NumberField(self._set_start, tip="where the clip starts")
         self.length = NumberField(self._set_length, bounds=(0.0, 1e9), tip="trim the clip's end")
         self.gain = NumberField(self._set_gain, 4, prefix="x", bounds=(-1e3, 1e3), tip="gain")
@@ -52,6 +51,8 @@ class ClipPage(QWidget):
     def _shape_box(self, which: str) -> QComboBox:
         box = QComboBox()
         box.addItems(FADE_SHAPES)
+        box.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        box.setMinimumContentsLength(6)  # "equal-power" elided rather than widening the pane
         box.setToolTip(f"the fade-{which}'s shape")
         box.activated.connect(lambda i: self._set_fade(which, None, FADE_SHAPES[i]))
         return box
@@ -73,8 +74,10 @@ class ClipPage(QWidget):
         axis = project.axis
         name = project.tile(clip.tile_id).name
         more = len(self.doc.selected_clips) - 1
-        extra = f" (+{more} more selected)" if more else ""
-        self.title.setText(f"<b>clip</b> of <b>{name}</b> on {track.name}{extra}")
+        extra = f" (+{more})" if more else ""
+        # one short line: a wrapping label would squeeze the fields in the scroll area
+        self.title.setText(f"<b>clip</b> · {name}{extra}")
+        self.title.setToolTip(f"a clip of {name} on {track.name}")
         for box in (self.start, self.length, self.fade_in, self.fade_out):
             box.setDecimals(AXIS_DECIMALS[axis])
             box.setSuffix(axis_suffix(axis))
@@ -88,7 +91,7 @@ class ClipPage(QWidget):
         self.shape_in.setCurrentText(clip.fade_in.shape)
         self.shape_out.setCurrentText(clip.fade_out.shape)
         self.stretch.show_value(clip.stretch)
-        self.stretch.setSuffix(f" ({clip.stretch_mode})")
+        self.stretch.setSuffix(" (loops)" if clip.stretch_mode == "repeat" else "")
         self.mirror.show_value(clip.pivot)
         self.mirror.setToolTip(
             "the horizontal line amplitude drags and inversion turn about, in the clip's values "

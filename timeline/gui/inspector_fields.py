@@ -10,6 +10,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QDoubleSpinBox, QHBoxLayout, QWidget
 
 AXIS_DECIMALS = {"time": 4, "position": 3}  # 0.1 ms, or a thousandth of a degree
+MIN_WIDTH = 64
 
 
 def shown_axis(u: float, axis: str) -> float:
@@ -47,6 +48,7 @@ class NumberField(QDoubleSpinBox):
         self.setPrefix(prefix)
         self.setKeyboardTracking(False)
         self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)  # the wheel scrolls the page, not values
+        self.setMinimumWidth(MIN_WIDTH)  # not as wide as the largest value: the pane stays narrow
         self.setToolTip(f"{tip}; type a value and press Enter" if tip else "type and press Enter")
         self._shown: float | None = None
         self.editingFinished.connect(self._finished)
@@ -66,11 +68,11 @@ class NumberField(QDoubleSpinBox):
 
 
 def pair(*widgets: QWidget) -> QWidget:
-    """Widgets side by side in one form row."""
+    """Widgets side by side in one form row (numbers get the most room)."""
     row = QWidget()
     layout = QHBoxLayout(row)
     layout.setContentsMargins(0, 0, 0, 0)
     layout.setSpacing(4)
     for widget in widgets:
-        layout.addWidget(widget, 1)
+        layout.addWidget(widget, 3 if isinstance(widget, QDoubleSpinBox) else 2)
     return row

@@ -20,7 +20,6 @@ class TrackPage(QWidget):
         super().__init__()
         self.doc = doc
         self.title = QLabel()
-        self.title.setWordWrap(True)
         self.name = QLineEdit()
         self.name.setToolTip("the track's name; type and press Enter")
         self.name.editingFinished.connect(self._rename)

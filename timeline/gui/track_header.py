@@ -3,7 +3,7 @@ Click a header to show its track in the inspector; drag it up or down to reorder
 
 from __future__ import annotations
 
-from PySide6.QtCore import QPoint, Qt, Signal
+from PySide6.QtCore import QEvent, QObject, QPoint, Qt, Signal
 from PySide6.QtGui import QColor, QMouseEvent
 from PySide6.QtWidgets import (
     QDoubleSpinBox,
@@ -82,7 +82,14 @@ class TrackHeader(QFrame):
         layout.setSpacing(2)
         layout.addLayout(top)
         layout.addLayout(bottom)
+        for field in (self.name, self.gain):
+            field.installEventFilter(self)  # typing in a header shows its track too
         self.show_track(track)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
+        if event.type() == QEvent.Type.FocusIn:
+            self.doc.select_track(self.track_id)
+        return False
 
     def _toggle(self, text: str, tip: str, field: str) -> QToolButton:
         button = QToolButton()
