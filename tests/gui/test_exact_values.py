@@ -197,3 +197,25 @@ def test_a_marker_is_renamed_in_place_on_the_ruler(knob):
     QTest.keyClicks(box, "zzz")
     QTest.keyClick(box, Qt.Key.Key_Escape)
     assert ruler.name_edit is None and win.doc.project.markers[2].name == "Med"
+
+
+def test_a_scrub_let_go_while_playing_starts_the_knob_at_that_angle(knob, qtbot):
+    win = knob
+    ruler = win.ruler
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert win.player.playing
+    qtbot.waitUntil(lambda: win.player.angle is not None, timeout=15_000)
+    assert abs(math.degrees(win.player.angle) - 110) > 10  # it starts at the first rest point
+    start = QPoint(round(ruler.x_of(win.view.scene().playhead_u)), 30)
+    end = QPoint(round(ruler.x_of(math.radians(110))), 30)
+    QTest.mousePress(ruler, LEFT, pos=start)
+    QTest.mouseMove(ruler, (start + end) / 2)
+    QTest.mouseMove(ruler, end)
+    QTest.mouseRelease(ruler, LEFT, pos=end)
+    assert win.doc.project.loop is None
+    qtbot.waitUntil(
+        lambda: win.player.angle is not None and abs(math.degrees(win.player.angle) - 110) < 2.0,
+        timeout=15_000,
+    )
+    QTest.keyClick(win, Qt.Key.Key_Space)
+    assert not win.player.playing

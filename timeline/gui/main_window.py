@@ -420,8 +420,15 @@ class MainWindow(QMainWindow):
         self.transport.show_playing(self.player.playing)
 
     def _scrubbed(self, u: float) -> None:
-        """A scrub let go while playing goes on playing from there."""
-        if self.player.playing and self.doc.project.axis == "time":
+        """A scrub let go while playing goes on from there: a time project plays on from that
+        time, a position project's knob starts again at that angle (felt under the hand)."""
+        if not self.player.playing:
+            return
+        project = self.doc.project
+        if project.axis == "position":
+            self.player.play(project, origin=u)
+            self.transport.show_playing(self.player.playing)
+        else:
             self.player.stop()
             self.play_stop(u)
 
