@@ -44,6 +44,10 @@ def test_shift_click_extends_the_selection_and_ctrl_click_toggles(window):
     assert win.doc.selected_clips == [c1, c2]
     click(win, clip_point(win, elsewhere), CTRL)
     assert win.doc.selected_clips == [c1, c2, elsewhere]
+    # pressing a selected clip keeps the selection and brings that clip up in the inspector
+    click(win, clip_point(win, c2))
+    assert sorted(win.doc.selected_clips) == sorted([c1, c2, elsewhere])
+    assert win.inspector.pages["clip"].start.value() == 2.0
     assert win.doc.project == win.doc.history.project  # selecting edits nothing
 
 

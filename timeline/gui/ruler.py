@@ -200,7 +200,7 @@ class Ruler(QWidget):
         i = self.marker_at(x, y)
         if i is not None:
             name = self.doc.project.markers[i].name
-            menu.addAction(f"Rename marker {name}…", lambda: self.rename(i))
+            menu.addAction(f"Rename marker {name}", lambda: self.rename(i))
             menu.addAction(
                 f"Delete marker {name}",
                 lambda: self.doc.apply("delete marker", markers.remove_marker, i),

@@ -219,6 +219,8 @@ class TimelineView(QGraphicsView):
             self.doc.select_clips(extended(self.doc.project, self.doc.selected_clips, clip_id))
         elif clip_id not in self.doc.selected_clips:
             self.doc.select_clips([clip_id])
+        else:  # the pressed clip first: the inspector shows it and Shift+click extends from it
+            self.doc.select_clips([clip_id, *self.doc.selected_clips])
         self.doc.select_tile(item.clip.tile_id)
         self.gesture = self._gesture_for(item, pos, mods)
 
