@@ -11,6 +11,7 @@ import math
 from dataclasses import replace
 
 from timeline import edits
+from timeline.edits.naming import unique_tile_name
 from timeline.errors import EditError
 from timeline.model import Project
 from timeline.signal.generators import GENERATORS
@@ -83,7 +84,8 @@ def editable(project: Project, tile_id: str, clip_ids: list[str]) -> tuple[Proje
     if tile_id not in templates:
         return project, tile_id
     tile = project.tile(tile_id)
-    project, copy = edits.add_tile(project, tile.with_name(f"{tile.name} copy"), "Scratch")
+    name = unique_tile_name(project, f"{tile.name} copy")
+    project, copy = edits.add_tile(project, tile.with_name(name), "Scratch")
     chosen = set(clip_ids)
     tracks = tuple(
         replace(

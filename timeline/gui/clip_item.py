@@ -18,6 +18,7 @@ from .geometry import CLIP_MARGIN, Geometry, axis_text, gain_text
 
 EDGE_PX = 6.0
 HANDLE_PX = 9.0
+GAIN_PX = 4.0  # the top edge's strip that drags the clip's gain
 GRAB_PX = 10.0  # a clip drawn narrower than this (an emphasis, a tap) is grabbed this wide
 SHAPE_LABEL_PX = 60.0  # fades this long show their shape's name
 VALUE_RANGE = 1.0  # the lane shows -1 .. 1 of the tile's full scale
@@ -104,6 +105,10 @@ class ClipItem(QGraphicsItem):
         pad = self._pad()
         return QRectF(-1 - pad, -1, self._w + 2 + 2 * pad, self._h + 2)
 
+    def width(self) -> float:
+        """The clip's drawn width (its grab area may reach beyond it)."""
+        return self._w
+
     def _pad(self) -> float:
         """How far a narrow clip's grab area reaches beyond each of its ends."""
         return max(0.0, (GRAB_PX - self._w) / 2)
@@ -130,7 +135,8 @@ class ClipItem(QGraphicsItem):
         return QPointF(self._w - self.lane_geometry.x(clip.fade_out.length), 0.0)
 
     def zone(self, pos: QPointF) -> str:
-        """What a press at an item position grabs: fade-in, fade-out, left, right or body.
+        """What a press at an item position grabs: fade-in, fade-out, left, right, gain (the top
+        edge between the fade handles) or body.
 
         A clip narrower than GRAB_PX is too small to aim at its edges or fades: it is all body,
         to move (zoom in to trim it)."""
@@ -145,6 +151,8 @@ class ClipItem(QGraphicsItem):
             return "left"
         if pos.x() >= self._w - edge:
             return "right"
+        if pos.y() <= GAIN_PX:
+            return "gain"
         return "body"
 
     # --- painting -------------------------------------------------------------------------

@@ -31,6 +31,9 @@ class Document(QObject):
         self.path = path
         self.selected_clips: list[str] = []
         self.selected_tile: str | None = None
+        self.selected_marker: int | None = None  # index in the project's sorted markers
+        self.selected_track: str | None = None
+        self.inspected = "clip"  # what was selected last: "clip", "marker" or "track"
         self._announced: object = None  # merge key of the drag last announced
 
     @property
@@ -107,6 +110,7 @@ class Document(QObject):
         """Start over on another project (a fresh history, nothing selected)."""
         self.history = History(project)
         self.path = path
+        self.selected_marker = self.selected_track = None
         self.select_clips([])
         self.select_tile(None)
         self._emit_changed()
@@ -120,8 +124,9 @@ class Document(QObject):
     def select_clips(self, clip_ids: list[str]) -> None:
         """Replace the clip selection."""
         clip_ids = list(dict.fromkeys(clip_ids))
-        if clip_ids != self.selected_clips:
-            self.selected_clips = clip_ids
+        inspected = "clip" if clip_ids else self.inspected
+        if clip_ids != self.selected_clips or inspected != self.inspected:
+            self.selected_clips, self.inspected = clip_ids, inspected
             self.selection_changed.emit()
 
     def select_tile(self, tile_id: str | None) -> None:
@@ -130,12 +135,35 @@ class Document(QObject):
             self.selected_tile = tile_id
             self.selection_changed.emit()
 
+    def select_marker(self, index: int | None) -> None:
+        """Choose the marker the inspector shows (an index into the sorted markers)."""
+        if (index, "marker") != (self.selected_marker, self.inspected):
+            self.selected_marker, self.inspected = index, "marker"
+            self.selection_changed.emit()
+
+    def select_track(self, track_id: str | None) -> None:
+        """Choose the track the inspector shows."""
+        if (track_id, "track") != (self.selected_track, self.inspected):
+            self.selected_track, self.inspected = track_id, "track"
+            self.selection_changed.emit()
+
     def _prune_selection(self) -> None:
-        tracks = self.project.tracks
-        kept = [c for c in self.selected_clips if any(c in t.clips_by_id for t in tracks)]
-        tile = self.selected_tile if self.selected_tile in self.project.tiles else None
-        if kept != self.selected_clips or tile != self.selected_tile:
-            self.selected_clips, self.selected_tile = kept, tile
+        project = self.project
+        kept = [c for c in self.selected_clips if any(c in t.clips_by_id for t in project.tracks)]
+        tile = self.selected_tile if self.selected_tile in project.tiles else None
+        marker = self.selected_marker
+        marker = marker if marker is not None and marker < len(project.markers) else None
+        track = self.selected_track
+        track = track if any(t.id == track for t in project.tracks) else None
+        before = (
+            self.selected_clips,
+            self.selected_tile,
+            self.selected_marker,
+            self.selected_track,
+        )
+        if (kept, tile, marker, track) != before:
+            self.selected_clips, self.selected_tile, self.selected_marker = kept, tile, marker
+            self.selected_track = track
             self.selection_changed.emit()
 
     def _emit_changed(self) -> None:

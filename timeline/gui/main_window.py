@@ -45,6 +45,7 @@ from .message_bar import MessageBar
 from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
+from .ripple import remove_rippled
 from .ruler import Ruler
 from .similarity_map import similarity_window
 from .sound_import import SoundImport
@@ -137,6 +138,7 @@ class MainWindow(QMainWindow):
         self.transport.hand_changed.connect(self._hand_changed)
         self.ruler.clicked.connect(self._ruler_clicked)
         self.ruler.loop_dragged.connect(lambda: self.transport.loop.setChecked(True))
+        self.ruler.scrubbed.connect(self._scrubbed)
         self.messages.cancel_requested.connect(self.cancel_jobs)
 
         lanes = QWidget()
@@ -245,6 +247,8 @@ class MainWindow(QMainWindow):
         for shape in ("linear", "equal-power", "exponential", "s-curve"):
             self._action(fades, shape, lambda s=shape: self.set_fade_shape(s))
         self._action(edit, "Select &all", self.select_all, QKeySequence.StandardKey.SelectAll)
+        self.ripple_action = self._action(edit, "Ri&pple edit", self.toggle_ripple)
+        self.ripple_action.setCheckable(True)
 
         view = bar.addMenu("&View")
         self._action(view, "Zoom &in", lambda: self.view.zoom(ZOOM_STEP), "Ctrl+=")
@@ -351,7 +355,8 @@ class MainWindow(QMainWindow):
             return
         ids = with_emphasis(self.doc.project, self.doc.selected_clips)
         if ids:
-            self.doc.apply("delete", edits.remove_clips, ids)
+            remove = remove_rippled if self.view.ripple else edits.remove_clips
+            self.doc.apply("delete", remove, ids)
 
     def invert(self) -> None:
         """Mirror the selected clips about their mirror lines."""
@@ -386,6 +391,12 @@ class MainWindow(QMainWindow):
 
     def select_all(self) -> None:
         self.doc.select_clips([c.id for t in self.doc.project.tracks for c in t.clips])
+
+    def toggle_ripple(self) -> None:
+        """Ripple edit on or off: trimming an end or deleting moves the later clips along."""
+        self.view.ripple = not self.view.ripple
+        self.ripple_action.setChecked(self.view.ripple)
+        self.messages.show_message("ripple edit on" if self.view.ripple else "ripple edit off")
 
     def toggle_snap(self) -> None:
         self.view.snapping = not self.view.snapping
@@ -462,6 +473,19 @@ class MainWindow(QMainWindow):
             self.player.stop()
             self.play_stop(at)
         self.transport.show_playing(self.player.playing)
+
+    def _scrubbed(self, u: float) -> None:
+        """A scrub let go while playing goes on from there: a time project plays on from that
+        time, a position project's knob starts again at that angle (felt under the hand)."""
+        if not self.player.playing:
+            return
+        project = self.doc.project
+        if project.axis == "position":
+            self.player.play(project, origin=u)
+            self.transport.show_playing(self.player.playing)
+        else:
+            self.player.stop()
+            self.play_stop(u)
 
     def _ruler_clicked(self, u: float) -> None:
         self.transport.show_position(u, self.doc.project.axis)

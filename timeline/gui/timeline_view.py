@@ -19,12 +19,15 @@ from .geometry import Geometry
 from .gestures.amplitude import AmplitudeGesture
 from .gestures.base import Gesture
 from .gestures.fade import FadeGesture
+from .gestures.gain import GainGesture
 from .gestures.move import MoveGesture
 from .gestures.palette_drop import PaletteDrop, dropped_tile
 from .gestures.pivot import PivotGesture, places_mirror_line
 from .gestures.rubber_band import RubberBandGesture
+from .gestures.select import extended
 from .gestures.stretch import StretchGesture
 from .gestures.trim import TrimGesture
+from .snap_line import SnapLine
 from .snapping import EdgeIndex, snap
 from .timeline_scene import TimelineScene
 
@@ -38,6 +41,7 @@ CURSORS = {
     "fade-in": Qt.CursorShape.PointingHandCursor,
     "fade-out": Qt.CursorShape.PointingHandCursor,
     "body": Qt.CursorShape.OpenHandCursor,
+    "gain": Qt.CursorShape.SizeVerCursor,
 }
 
 
@@ -55,6 +59,7 @@ class TimelineView(QGraphicsView):
         super().__init__(self._scene)
         self.doc = doc
         self.snapping = True
+        self.ripple = False  # Edit > Ripple edit: trims and deletes move the later clips
         self._edges = EdgeIndex()
         self.gesture: Gesture | None = None
         self.drop: PaletteDrop | None = None
@@ -68,6 +73,7 @@ class TimelineView(QGraphicsView):
         self.setAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
         self.setRenderHint(QPainter.RenderHint.Antialiasing)
         self.setViewportUpdateMode(QGraphicsView.ViewportUpdateMode.MinimalViewportUpdate)
+        self.snap_line = SnapLine(self._scene, self.lane_geometry)
         self.setAcceptDrops(True)
         self.setMouseTracking(True)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOn)
@@ -107,11 +113,14 @@ class TimelineView(QGraphicsView):
         return self.clip_item(clip_id).sceneBoundingRect().adjusted(1, 1, -1, -1)
 
     def snap(self, u: float, dragged: list[str]) -> float:
-        """Snap an axis position to clip edges or the grid, if snapping is on."""
+        """Snap an axis position to clip edges or the grid, if snapping is on; the snap line
+        shows where it snapped."""
         if not self.snapping:
             return u
         nearest = self._edges.nearest(self.doc.project, u, dragged)
-        return snap(u, [nearest], self.scene().grid_step(), self.lane_geometry.u(SNAP_PX))
+        snapped = snap(u, [nearest], self.scene().grid_step(), self.lane_geometry.u(SNAP_PX))
+        self.snap_line.show_at(snapped if snapped != u else None)
+        return snapped
 
     # --- zoom and scroll -------------------------------------------------------------------
 
@@ -180,10 +189,14 @@ class TimelineView(QGraphicsView):
         self.readout.show()
 
     def item_at(self, pos: QPointF) -> ClipItem | None:
-        for item in self.items(pos.toPoint()):
-            if isinstance(item, ClipItem):
+        """The clip under a viewport point: where two clips touch, the one the pointer is over
+        (a clip's grab area reaches a little beyond its ends)."""
+        found = [item for item in self.items(pos.toPoint()) if isinstance(item, ClipItem)]
+        scene = self.mapToScene(pos.toPoint())
+        for item in found:
+            if 0.0 <= item.mapFromScene(scene).x() < item.width():
                 return item
-        return None
+        return found[0] if found else None
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         if event.button() != Qt.MouseButton.LeftButton:
@@ -203,8 +216,12 @@ class TimelineView(QGraphicsView):
             chosen.remove(clip_id) if clip_id in chosen else chosen.append(clip_id)
             self.doc.select_clips(chosen)
             return
-        if clip_id not in self.doc.selected_clips:
+        if mods & Qt.KeyboardModifier.ShiftModifier and clip_id not in self.doc.selected_clips:
+            self.doc.select_clips(extended(self.doc.project, self.doc.selected_clips, clip_id))
+        elif clip_id not in self.doc.selected_clips:
             self.doc.select_clips([clip_id])
+        else:  # the pressed clip first: the inspector shows it and Shift+click extends from it
+            self.doc.select_clips([clip_id, *self.doc.selected_clips])
         self.doc.select_tile(item.clip.tile_id)
         self.gesture = self._gesture_for(item, pos, mods)
 
@@ -216,6 +233,8 @@ class TimelineView(QGraphicsView):
             return PivotGesture(self, pos, clip_id)
         if zone.startswith("fade-"):
             return FadeGesture(self, pos, clip_id, zone[5:])
+        if zone == "gain":
+            return GainGesture(self, pos, clip_id)
         if zone in ("left", "right"):
             cls = StretchGesture if shift else TrimGesture
             return cls(self, pos, clip_id, zone)
@@ -242,6 +261,7 @@ class TimelineView(QGraphicsView):
         gesture, self.gesture = self.gesture, None
         gesture.release(self.mapToScene(event.position().toPoint()))
         self.readout.hide()
+        self.snap_line.show_at(None)
         self.gesture_finished.emit()
 
     def contextMenuEvent(self, event) -> None:
@@ -281,12 +301,14 @@ class TimelineView(QGraphicsView):
         event.acceptProposedAction()
 
     def dragLeaveEvent(self, event) -> None:
+        self.snap_line.show_at(None)
         if self.drop is not None:
             self.drop.finish()
             self.drop = None
 
     def dropEvent(self, event: QDropEvent) -> None:
         pos = self.mapToScene(event.position().toPoint())
+        self.snap_line.show_at(None)
         if self.drop is not None:
             drop, self.drop = self.drop, None
             drop.drop(pos)

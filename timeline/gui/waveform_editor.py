@@ -1,6 +1,6 @@
 """The waveform editor: the selected tile's curve, spline points (or a vibration design's
 amplitude or frequency breakpoints) to drag, add and delete, exact values in numeric boxes, and a
-range that can be dragged (or sent) to the palette."""
+range that can be dragged (or sent) to the palette; a palette tile dropped on it opens there."""
 
 from __future__ import annotations
 
@@ -29,6 +29,7 @@ from timeline.tiles.vibration_tile import VibrationTile
 from .clip_shape import tile_samples
 from .document import Document
 from .geometry import axis_text, display_factor
+from .gestures.palette_drop import dropped_tile
 from .lane_scale import full_scale_text
 from .palette import RANGE_MIME
 from .tile_editing import edit_tile
@@ -325,9 +326,35 @@ class WaveformEditor(QWidget):
         layout.addWidget(self.canvas, 1)
         layout.addLayout(point_row)
         layout.addLayout(tile_row)
+        self.setAcceptDrops(True)
         doc.changed.connect(self.refresh)
         doc.selection_changed.connect(self.refresh)
         self.refresh()
+
+    def _dropped(self, event) -> str | None:
+        tile_id = dropped_tile(event.mimeData())
+        return tile_id if tile_id in self.doc.project.tiles else None
+
+    def dragEnterEvent(self, event) -> None:
+        if self._dropped(event) is not None:
+            event.setDropAction(Qt.DropAction.CopyAction)
+            event.accept()
+        else:
+            event.ignore()
+
+    def dragMoveEvent(self, event) -> None:
+        self.dragEnterEvent(event)
+
+    def dropEvent(self, event) -> None:
+        """A palette tile dropped here opens in the editor (the timeline is left as it is)."""
+        tile_id = self._dropped(event)
+        if tile_id is None:
+            event.ignore()
+            return
+        event.setDropAction(Qt.DropAction.CopyAction)
+        event.accept()
+        self.doc.select_tile(tile_id)
+        self.doc.message.emit(f"editing {self.doc.project.tile(tile_id).name}", "info")
 
     def points(self) -> tuple[tuple[float, float], ...] | None:
         """The shown tile's draggable points (a design's: those of the chosen envelope)."""
@@ -408,16 +435,19 @@ class WaveformEditor(QWidget):
         self.refresh()
 
     def _typed(self) -> None:
-        if self.point is None or self.tile_id is None:
+        points = self.points()
+        if self.point is None or self.tile_id is None or points is None:
             return
-        self.apply(
-            self.label("set"),
-            tile_shape.move_point,
-            self.point,
-            self.t_box.value() / display_factor(self.doc.project.axis),
-            self.v_box.value(),
-            self.lane,
-        )
+        # a box left as shown keeps the point's exact value (the box rounds it)
+        t, v = points[self.point]
+        factor = display_factor(self.doc.project.axis)
+        if self.t_box.value() != round(t * factor, self.t_box.decimals()):
+            t = self.t_box.value() / factor
+        if self.v_box.value() != round(v, self.v_box.decimals()):
+            v = self.v_box.value()
+        if (t, v) == points[self.point]:
+            return
+        self.apply(self.label("set"), tile_shape.move_point, self.point, t, v, self.lane)
 
     def apply(self, label: str, edit, *args, merge_key: object = None):
         """Edit the shown tile: edit(project, tile_id, *args), one undo step (see edit_tile)."""
