@@ -22,6 +22,12 @@ def peak_rss() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024.0  # KiB on Linux
 
 
+def cpu_seconds() -> float:
+    """User + system CPU of this process so far, every thread included."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
 def run_child(module: str, *args: str) -> dict[str, Any]:
     """Run `python -m module args` and return the JSON object its last output line prints."""
     done = subprocess.run(
