@@ -19,6 +19,7 @@ declared count (a compression bomb costs nothing).
 from __future__ import annotations
 
 import base64
+import io
 import zlib
 from collections.abc import Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -160,7 +161,7 @@ def _inflate(pieces: Iterator[bytes], out: memoryview, where: str, count: int) -
 class Appendix:
     """A file's binary appendix: `size` bytes from `start` to the end of `file`."""
 
-    file: BinaryIO
+    file: io.BufferedIOBase
     start: int
     size: int
 
@@ -168,7 +169,7 @@ class Appendix:
 SCAN_BYTES = 1 << 20  # read at a time while looking for the end of the JSON document
 
 
-def split(file: BinaryIO) -> tuple[bytearray, Appendix | None]:
+def split(file: io.BufferedIOBase) -> tuple[bytearray, Appendix | None]:
     """The JSON document's bytes, and the appendix after SEPARATOR if the file has one.
 
     Reads the file from its start until SEPARATOR (or the end): never into the appendix.
@@ -249,7 +250,7 @@ def read_raw(entry: Any, where: str, appendix: Appendix) -> tuple[np.ndarray, Co
     return out, key
 
 
-def _read_hashed(file: BinaryIO, out: np.ndarray, key: ContentKey, where: str) -> None:
+def _read_hashed(file: io.BufferedIOBase, out: np.ndarray, key: ContentKey, where: str) -> None:
     """Fill `out` from the file block by block; a thread hashes each block while the next is
     read (both release the interpreter lock), and each is checked finite."""
     # an ndarray is a buffer: numpy's stubs declare __buffer__ for Python >= 3.12 only

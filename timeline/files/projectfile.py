@@ -21,7 +21,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from operator import attrgetter, itemgetter
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, BinaryIO, NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from immutables import Map
@@ -658,7 +658,7 @@ def _parsed(text: str | bytes | bytearray) -> Any:
     return json.loads(text, parse_constant=fields.refuse_constant)
 
 
-def _read(file: BinaryIO) -> Project:
+def _read(file: io.BufferedIOBase) -> Project:
     """The project of an open file: its JSON document, then its appendix's samples."""
     text, appendix = sample_media.split(file)
     doc = _parsed(text)
