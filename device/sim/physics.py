@@ -23,6 +23,7 @@ from device.sim.params import KnobParams
 from device.sim.plant import step_matrix, system_matrix
 from device.sim.readings import blow_up_index, readings
 from device.sim.stability import stability_flags
+from timeline.limits.servo import load_of
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
     DeviceError,
@@ -89,6 +90,7 @@ class KnobPhysics:
         """Begin a play: the current angle becomes the anchor (theta = 0); estimators reset."""
         self.hand = hand or Hand("hold")
         self._map = self._step_map(self.hand)
+        self._loads = (load_of(self.hand),)  # the whole loop's stability is judged with it
         self.anchor = self._quantise(self.theta)
         self.grip_target = self.theta
         self.samples = 0  # samples since start
@@ -127,7 +129,7 @@ class KnobPhysics:
         layers = dict(zip("dkbm", coeffs[:, :n], strict=False))
         p = self.params
         k, b, m = layers["k"], layers["b"], layers.get("m")
-        flags = stability_flags(tel.time, k, b, m, p.dynamics, p.period)
+        flags = stability_flags(tel.time, k, b, m, p.dynamics, p.period, self._loads)
         if refused is not None:
             flags.append(refused)
             tel = replace(tel, warnings=(*tel.warnings, refused.message))
@@ -186,7 +188,9 @@ class KnobPhysics:
             layers["m"] = mass
         stiffness = local_stiffness(table, where)
         p = self.params
-        flags = stability_flags(tel.time, stiffness, damping, mass, p.dynamics, p.period)
+        flags = stability_flags(
+            tel.time, stiffness, damping, mass, p.dynamics, p.period, self._loads
+        )
         return _with(tel, layers, flags)
 
     def _run(
