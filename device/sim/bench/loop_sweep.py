@@ -128,7 +128,7 @@ def run(quick: bool, out: Path) -> list[Table]:  # noqa: ARG001 - no plot
                        total.false_alarms, 100.0 * total.false_alarm_share])  # fmt: skip
     table.notes.append(
         "unstable (sim): the torque's peak over the last quarter of the run is above the quarter "
-        "before (and above 1e-12 N*m), or reaches the 180 mNm clamp; flagged: unstable-loop, damping-limit, mass-limit, "
-        "mass-cancels-inertia or blow-up"
+        "before (and above 1e-12 N*m), or reaches the 180 mNm clamp; flagged: unstable-loop, "
+        "damping-limit, mass-limit, mass-cancels-inertia or blow-up"
     )
     return [table]
