@@ -7,8 +7,11 @@ device declares), compute tau = -k*theta - b*theta_dot - m*theta_ddot, apply it 
 later and hold it over a period on a rotor of inertia J and viscous damping b_dev. With an ideal
 sensor and no friction that loop is linear, so its period-to-period map is a matrix and it is
 stable exactly when every eigenvalue lies inside the unit circle (`spectral_radius` < 1). The
-limits below are found on that map, with the knob free (no hand): a hand adds inertia and
-damping and steadies the knob, so the free knob is the case to design for.
+single-layer limits below are found on that map with the knob free (no hand) and the other
+layers at zero. They do not bound the layers together, and a hand does not always steady the
+knob (a pinch's stiff, light grip makes a mass of -0.95 J unstable that the free knob renders):
+`whole_loop` judges all three layers at once, with each load a hand puts on the knob, on the
+loop's characteristic polynomial.
 
 * stiffness: passivity (Colgate & Schenkel 1997): b_dev > K*T/2 + |B|; with a computation delay
   of D periods the held torque is older by D*T and the bound becomes b_dev > K*T*(1/2 + D) + |B|
