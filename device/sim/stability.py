@@ -123,6 +123,8 @@ def _whole_loop(
     """Append `unstable-loop` at samples where every layer is inside its own limit and the loop
     with all of them (and the loads) is unstable; margin: growth per period minus 1."""
     loop = servo.whole_loop(dyn, period, stiffness, damping, mass, loads)
+    if not loop.unstable:  # stable with every load: no sample to explain
+        return
     bad = loop.any & servo.layers_inside(dyn, period, stiffness, damping, mass)
     if bad.any():
         hands = ", ".join(name for name, where in loop.unstable.items() if (where & bad).any())

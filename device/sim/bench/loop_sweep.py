@@ -103,7 +103,7 @@ def sweep(count: int, seconds: float, seed: int = 20) -> dict[tuple[str, int, st
             params = KnobParams(**LINEAR, estimator=estimator, delay=delay)
             rows = mixes(params, count, rng)
             for hand in HANDS:
-                tally = out.setdefault((estimator, delay, str(hand)), Tally())
+                tally = out.setdefault((estimator, delay, servo.load_of(hand).name), Tally())
                 for mix in rows:
                     tally.add(*play(params, hand, mix, seconds))
     return out
