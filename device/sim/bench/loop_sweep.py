@@ -9,6 +9,10 @@ the last quarter of the run is above its peak over the quarter before (and above
 noise, `FLOOR`), or it reached the clamp.
 A run is flagged when the sim raised a flag that claims the loop grows (`GROWS`); passivity and
 negative damping are not stability claims (a passive bound is stricter than stability).
+
+Run by `python benchmarks/loop_sweep.py` (20 minutes on a loaded 2-core machine: not one of the
+`bench` verb's benchmarks, whose `--quick` run CI takes); tests/device/test_whole_loop.py runs a
+small sweep.
 """
 
 from __future__ import annotations
@@ -23,8 +27,6 @@ from timeline.bench.report import Table
 from timeline.limits import servo
 from timeline.plugins.device_protocol import ESTIMATORS, CoefficientBlock, Hand
 
-NAME = "loop-sweep"
-SUMMARY = "simulated knob: whole-loop stability flags against simulated growth, random k, b, m"
 GROWS = {"unstable-loop", "damping-limit", "mass-limit", "mass-cancels-inertia", "blow-up"}
 LINEAR = {"quantum": 0.0, "coulomb": 0.0}
 # one hand per load the docs' hands make (servo.hand_loads): free, each model holding, pushing
