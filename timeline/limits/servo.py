@@ -182,15 +182,14 @@ def load_of(hand: Hand) -> Load:
 
 def hand_loads() -> tuple[Load, ...]:
     """Every load the docs' hands make: the free knob, each named hand holding (or turning) and
-    pushing (its inertia without a grip), duplicates dropped."""
-    found = {FREE: None}
+    pushing (its inertia without a grip); loads with the same numbers are kept once (a pinch
+    pushing, with no inertia, is the free knob)."""
+    found = {(0.0, 0.0, 0.0): FREE}
     for model in HAND_MODELS:
         for mode in ("hold", "push"):
             load = load_of(Hand(mode, 0.0, model=model))
-            same = Load("", load.inertia, load.stiffness, load.damping)
-            if all(Load("", x.inertia, x.stiffness, x.damping) != same for x in found):
-                found[load] = None
-    return tuple(found)
+            found.setdefault((load.inertia, load.stiffness, load.damping), load)
+    return tuple(found.values())
 
 
 def _poly(*factors: np.ndarray) -> np.ndarray:
@@ -231,7 +230,7 @@ def characteristic(dynamics: Dynamics, period: float, load: Load = FREE) -> np.n
         t = period
         kin = np.array([[1.0, t, t * t / 2.0], [0.0, 1.0, t], [0.0, 0.0, 1.0]])
         m_obs = (np.eye(3) - np.outer(gains, [1.0, 0.0, 0.0])) @ kin
-        da = np.poly(m_obs)  # Faddeev-LeVerrier: adj(zI - M) = z^2 + B1 z + B2
+        da = np.poly(m_obs)  # Faddeev-LeVerrier: adj(zI - M) = I z^2 + B1 z + B2
         b1 = m_obs + da[1] * np.eye(3)
         b2 = m_obs @ b1 + da[2] * np.eye(3)
         na = np.array([gains[2], (b1 @ gains)[2], (b2 @ gains)[2], 0.0])  # times z
@@ -383,13 +382,13 @@ def whole_loop(
     for load in loads:
         rows = characteristic(dynamics, period, load)
         whole, flat = _judged(dynamics, period, load)
-        with np.errstate(over="ignore", invalid="ignore"):
-            bad = test(whole, flat, spring, b, m, load.stiffness == 0.0)
+        bad = test(whole, flat, spring, b, m, load.stiffness == 0.0)
         if not bad.any():
             continue
         at = np.flatnonzero(bad)
-        polys = rows[0] + np.outer(spring[at], rows[1]) + np.outer(b[at], rows[2])
-        polys += np.outer(m[at], rows[3])
+        with np.errstate(over="ignore", invalid="ignore"):  # absurd layers: not finite
+            polys = rows[0] + np.outer(spring[at], rows[1]) + np.outer(b[at], rows[2])
+            polys += np.outer(m[at], rows[3])
         finite = np.isfinite(polys).all(axis=1)
         radius = np.full(at.size, np.inf)
         radius[finite] = loop_radius(polys[finite])
