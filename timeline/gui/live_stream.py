@@ -4,6 +4,11 @@ Qt-free. The stream is what a device's `play` pulls block by block; `set_project
 reference, and the next block pulled is rendered from the new state (mixer caches make that a
 re-sum of the touched blocks), so an edit is felt within about one block period.
 
+A paced stream hands each block over `lead` before its first sample plays (its clock starts when
+the first block is handed over, so a slow first render does not make the next blocks burst) and
+counts the blocks it hands over later than that lead (LatenessMeter): what a device with a wall
+clock feels as an underrun.
+
 A position project plays as tables over angle (LiveTables); an edit rebuilds the tables and swaps
 them in, and a device that reads the program's `table` at every chunk (the sim: every 50 ms)
 plays the new ones from its next chunk.
@@ -20,7 +25,13 @@ import numpy as np
 
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
-from timeline.plugins.device_protocol import CoefficientBlock, PositionProgram, PositionTable
+from timeline.plugins.device_protocol import (
+    CoefficientBlock,
+    LatenessMeter,
+    PositionProgram,
+    PositionTable,
+)
+from timeline.plugins.device_protocol.lateness import LEAD_SECONDS
 from timeline.plugins.track_kinds import track_kind
 from timeline.rendering import playback
 from timeline.rendering.mixer import Mixer
@@ -28,7 +39,6 @@ from timeline.signal.render_presets import DEFAULT_QUALITY
 
 BLOCK_SECONDS = 0.01
 CHUNK_SECONDS = 0.5
-LEAD_SECONDS = 0.02  # how far ahead of the wall clock blocks are handed over
 
 
 @dataclass
@@ -54,11 +64,16 @@ class LiveStream:
         tracks: Iterable[str] | None = None,
         paced: bool = True,
         quality: str = DEFAULT_QUALITY,
+        mixer: Mixer | None = None,
+        asked: float | None = None,
     ) -> None:
+        """`mixer` may be one kept warm between plays; `asked` is the perf_counter time Play was
+        pressed (the first block's latency counts from it; default: now)."""
         self.rate, self.start, self.stop, self.loop = rate, start, max(stop, start), loop
         self.tracks = None if tracks is None else list(tracks)
         self.paced, self.quality = paced, quality
-        self.mixer = Mixer(cache_bytes=256 * 2**20)
+        self.mixer = mixer or Mixer(cache_bytes=256 * 2**20)
+        self.lateness = LatenessMeter(LEAD_SECONDS, asked)
         self.state = StreamState(position=start)
         self._project = project
         self._chunk: tuple[int, float, CoefficientBlock] | None = None  # (version, t0, block)
@@ -79,7 +94,7 @@ class LiveStream:
     def __iter__(self) -> Iterator[CoefficientBlock]:
         n = max(1, round(BLOCK_SECONDS * self.rate))
         t = self.start
-        clock = time.perf_counter()
+        clock: float | None = None  # perf_counter when the first block was handed over
         played = 0.0
         while not self._stopped.is_set():
             if t >= self.stop - 0.5 / self.rate:
@@ -89,9 +104,13 @@ class LiveStream:
             count = min(n, max(1, round((self.stop - t) * self.rate)))
             block = self._block(t, count)
             if self.paced:
-                delay = clock + played - LEAD_SECONDS - time.perf_counter()
+                now = time.perf_counter()
+                clock = now if clock is None else clock
+                delay = clock + played - LEAD_SECONDS - now
                 if delay > 0:
                     time.sleep(delay)
+                    now = time.perf_counter()
+                self.lateness.handed(clock + played, now)
             state = self.state
             if state.live_version != state.version:
                 state.live_version, state.live_at = state.version, time.perf_counter()
