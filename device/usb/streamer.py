@@ -119,8 +119,10 @@ class Stream:
         monitor: Monitor | None = None,
     ) -> None:
         """Stream everything the chunker yields and read telemetry until all of it is played."""
-        if not chunker.available(1):
+        if not chunker.available(self.lead_n):
             return  # an empty program: nothing to play
+        # The lead is read ahead: the device plays from the first block on, so the blocks that
+        # fill its queue go out back to back, not one per pull from a live stream.
         seq, fill, since, end = 0, 0, 0, False
         self.link.start(self.mask)
         while not end or self._n_received < self._n_sent:

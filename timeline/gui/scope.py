@@ -18,12 +18,13 @@ HISTORY = 4000  # columns kept (decimated samples)
 
 
 def column_extremes(values: np.ndarray, columns: int) -> tuple[np.ndarray, np.ndarray]:
-    """Each of `columns` consecutive, near-equal runs of values as its (min, max).
+    """The (min, max) of the values falling in each of `columns` pixel columns.
 
-    Needs at least as many values as columns; run i is values[i*n//columns : (i+1)*n//columns].
+    Value j of n falls in column j * columns // n (its x on the widget); needs n >= columns, so
+    that no column is empty.
     """
     n = values.size
-    starts = np.arange(columns) * n // columns
+    starts = -(-(np.arange(columns) * n) // columns)  # the first j of each column: ceil(i n / c)
     return np.minimum.reduceat(values, starts), np.maximum.reduceat(values, starts)
 
 
