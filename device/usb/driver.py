@@ -90,6 +90,11 @@ class UsbKnob(Device):
             backend = self.backend if self.backend is not None else default_backend()
             self.link = Link.open(self.vid, self.pid, backend, self.serial, self.timeout_ms)
 
+    def warm_up(self) -> None:
+        """An emulated device loads its compiled servo loop; hardware needs nothing."""
+        if hasattr(self.backend, "warm_up"):
+            self.backend.warm_up()
+
     def close(self) -> None:
         if self.link is not None:
             self.link.abort()

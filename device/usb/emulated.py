@@ -27,10 +27,11 @@ import usb.backend
 import usb.core
 import usb.util
 
+from device.sim import KnobPhysics
 from device.usb import descriptors as desc
 from device.usb import protocol as p
 from device.usb.firmware import EmulatedKnob
-from timeline.plugins.device_protocol import Hand
+from timeline.plugins.device_protocol import CoefficientBlock, Hand
 
 _GET_DESCRIPTOR = 0x06
 _NO_DEVICE = ("No such device (it may have been disconnected)", -4, errno.ENODEV)
@@ -185,6 +186,14 @@ class EmulatedBackend(usb.backend.IBackend):
     def __init__(self, *devices: EmulatedDevice) -> None:
         super().__init__()
         self.devices = list(devices)
+
+    def warm_up(self) -> None:
+        """Load the firmware's compiled servo loop, so the wall clock does not run on while it
+        loads during the first block."""
+        for dev in self.devices:
+            physics = KnobPhysics(dev.knob.physics.params)
+            physics.run_block(CoefficientBlock.zeros(1))
+            physics.run_idle(1)
 
     @property
     def realtime(self) -> bool:

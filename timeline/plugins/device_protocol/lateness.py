@@ -33,7 +33,8 @@ class Lateness:
         if not self.late:
             return ""
         blocks = "1 block" if self.late == 1 else f"{self.late} blocks"
-        gaps = f", {self.gaps} gaps over {GAP_SECONDS * 1e3:.0f} ms" if self.gaps else ""
+        gaps = "1 gap" if self.gaps == 1 else f"{self.gaps} gaps"
+        gaps = f", {gaps} over {GAP_SECONDS * 1e3:.0f} ms" if self.gaps else ""
         return f"{blocks} late, worst {self.worst * 1e3:.0f} ms{gaps}: the knob may have gone slack"
 
     def describe(self) -> str:
