@@ -28,7 +28,7 @@ HOG = "while True:\n    pass\n"  # one core busy, as a designer's other programs
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description="one editor session of `bench playback`")
     parser.add_argument("--device", default="sim")
     parser.add_argument("--clips", type=int, default=20_000)
     parser.add_argument("--seconds", type=float, default=4.0)

@@ -53,7 +53,7 @@ class _Chunk:
     version: int
     first: int
     end: int
-    future: Future[CoefficientBlock] | None
+    future: Future[CoefficientBlock]
     block: CoefficientBlock | None = None
 
     def covers(self, i: int, count: int) -> bool:
@@ -188,8 +188,9 @@ class LiveStream:
                 edit.future.cancel()  # a newer state or another place: not wanted any more
             edit = self._edit = self._submit(version, t, seconds)
         if edit is None:  # no worker (not iterating): render here
-            stop = min(self.stop, t + seconds)
-            return _Chunk(version, i, i + count, None, self.render(self._project, t, stop))
+            done: Future[CoefficientBlock] = Future()
+            done.set_result(self.render(self._project, t, min(self.stop, t + seconds)))
+            return _Chunk(version, i, i + count, done)
         if slot is not None:
             try:
                 edit.future.result(timeout=max(0.0, slot - time.perf_counter()))
@@ -198,12 +199,12 @@ class LiveStream:
             return edit
         ahead = [c for c in (edit, self._next) if c is not None and c.covers(i, count)]
         ahead = ahead if self.paced else [edit]  # unpaced: always the newest state
-        done, _ = wait([c.future for c in ahead], return_when=FIRST_COMPLETED)
-        return next(c for c in ahead if c.future in done and not c.future.cancelled())
+        ready, _ = wait([c.future for c in ahead], return_when=FIRST_COMPLETED)
+        return next(c for c in ahead if c.future in ready and not c.future.cancelled())
 
     def _adopt(self, chunk: _Chunk) -> _Chunk:
         """Play from this chunk, and render the one after it ahead."""
-        chunk.block = chunk.block if chunk.future is None else chunk.future.result()
+        chunk.block = chunk.future.result()
         if chunk is self._edit:
             self._edit = None
         if self._next is not None and self._next is not chunk:

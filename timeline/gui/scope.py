@@ -8,6 +8,8 @@ only when new telemetry arrived.
 
 from __future__ import annotations
 
+from typing import Any, cast
+
 import numpy as np
 import shiboken6
 from PySide6.QtCore import QPointF
@@ -59,8 +61,9 @@ class _Polyline:
             self.polygon = QPolygonF()
             self.polygon.resize(len(points))
             if len(points):  # the polygon's QPointF array: x, y as consecutive doubles
-                memory = shiboken6.VoidPtr(self.polygon.data(), points.size * 8, True)
-                self._memory = np.frombuffer(memory, np.float64).reshape(-1, 2)
+                size = points.size * 8
+                memory = shiboken6.VoidPtr(self.polygon.data(), size, True)  # pyright: ignore[reportCallIssue]
+                self._memory = np.frombuffer(cast(Any, memory), np.float64).reshape(-1, 2)
             else:
                 self._memory = np.zeros((0, 2))
         self._memory[:] = points
