@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
-from timeline.plugins.device_protocol import Lateness, LatenessMeter
+from timeline.plugins.device_protocol import Lateness, LatenessMeter, Telemetry
 
 
 def test_blocks_filling_the_lead_then_on_time_are_not_late():
@@ -38,3 +39,15 @@ def test_one_late_block_is_named_in_the_singular():
     assert Lateness(blocks=10, late=1, worst=0.062).sentence() == (
         "1 block late, worst 62 ms: the knob may have gone slack"
     )
+
+
+def test_the_play_summary_names_the_late_blocks():
+    n = 10
+    z = np.zeros(n)
+    counts = Lateness(blocks=203, late=2, gaps=1, worst=0.0415, first_block=0.004)
+    tel = Telemetry(1e4, np.arange(n) / 1e4, z, z, z, z, np.zeros(n, bool), lateness=counts)
+    assert tel.summary()[-1] == (
+        "real time: 2 of 203 blocks later than the 30 ms lead, 1 gaps over 50 ms, worst 41.5 ms "
+        "behind, first block 4 ms"
+    )
+    assert Telemetry.concatenate([tel, tel]).lateness == counts

@@ -188,9 +188,7 @@ class LiveStream:
                 edit.future.cancel()  # a newer state or another place: not wanted any more
             edit = self._edit = self._submit(version, t, seconds)
         if edit is None:  # no worker (not iterating): render here
-            done: Future[CoefficientBlock] = Future()
-            done.set_result(self.render(self._project, t, min(self.stop, t + seconds)))
-            return _Chunk(version, i, i + count, done)
+            return self._rendered_now(version, t, seconds)
         if slot is not None:
             try:
                 edit.future.result(timeout=max(0.0, slot - time.perf_counter()))
@@ -199,8 +197,19 @@ class LiveStream:
             return edit
         ahead = [c for c in (edit, self._next) if c is not None and c.covers(i, count)]
         ahead = ahead if self.paced else [edit]  # unpaced: always the newest state
+        ahead = [c for c in ahead if not c.future.cancelled()]
+        if not ahead:
+            return self._rendered_now(version, t, seconds)
         ready, _ = wait([c.future for c in ahead], return_when=FIRST_COMPLETED)
-        return next(c for c in ahead if c.future in ready and not c.future.cancelled())
+        return next(c for c in ahead if c.future in ready)
+
+    def _rendered_now(self, version: int, t: float, seconds: float) -> _Chunk:
+        """[t, t + seconds) of the newest state, rendered on this thread."""
+        stop = min(self.stop, t + seconds)
+        done: Future[CoefficientBlock] = Future()
+        done.set_result(self.render(self._project, t, stop))
+        i = round(t * self.rate)
+        return _Chunk(version, i, i + max(1, round((stop - t) * self.rate)), done)
 
     def _adopt(self, chunk: _Chunk) -> _Chunk:
         """Play from this chunk, and render the one after it ahead."""

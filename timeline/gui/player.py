@@ -125,7 +125,7 @@ class Player(QObject):
         if event.type() == QEvent.Type.Paint and self._warm_source is not None:
             watched.removeEventFilter(self)
             source, self._warm_source = self._warm_source, None
-            QTimer.singleShot(0, lambda: self.warm_up(source()))
+            QTimer.singleShot(0, self, lambda: self.warm_up(source()))
         return False
 
     def warm_up(self, project: Project, start: float = 0.0) -> None:
