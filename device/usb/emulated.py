@@ -86,7 +86,8 @@ class WallClock:
 class EmulatedDevice:
     """One device on the emulated bus: its firmware, identity, faults and transport state.
 
-    `realtime`: the firmware runs on the wall clock (see the module's docstring).
+    `realtime`: the firmware runs on the wall clock (see the module's docstring); `clock` and
+    `sleep` are that clock and how to wait on it (a test may pass a virtual one).
     """
 
     def __init__(
@@ -96,9 +97,12 @@ class EmulatedDevice:
         faults: FaultPlan | None = None,
         record: bool = False,
         realtime: bool = False,
+        clock: Callable[[], float] = time.monotonic,
+        sleep: Callable[[float], None] = time.sleep,
     ) -> None:
         self.knob = knob or EmulatedKnob()
-        self.clock = WallClock(self.knob.info.rate_hz) if realtime else None
+        self.clock = WallClock(self.knob.info.rate_hz, clock) if realtime else None
+        self.sleep = sleep
         self.identity = identity or desc.Identity()
         self.faults = faults or FaultPlan()
         self.record = record
@@ -142,7 +146,7 @@ class EmulatedDevice:
             return self.knob.send()
         need = self.knob.info.report_samples
         while self.knob.unreported < need and not self.knob.waiting:
-            time.sleep((need - self.knob.unreported) / self.clock.rate)
+            self.sleep((need - self.knob.unreported) / self.clock.rate)
             self.catch_up()
         return self.knob.report()
 

@@ -79,12 +79,12 @@ def _play(app, win, gesture: str, seconds: float) -> dict:
     win.player.notice.connect(said["notice"].append)
     win.player.finished.connect(said["finished"].append)
     win.play_stop()
-    step = _gesture(win, gesture)
+    step, finish = _gesture(win, gesture)
     t0 = time.perf_counter()
     while time.perf_counter() - t0 < seconds and win.player.playing:
         step()
         _pump(app, STEP_MS / 1000)
-    _end_gesture(win, gesture)
+    finish()
     if win.player.playing:
         win.play_stop()
     _wait(app, lambda: bool(said["finished"]), 5.0)
@@ -100,23 +100,23 @@ def _play(app, win, gesture: str, seconds: float) -> dict:
     }
 
 
-def _gesture(win, gesture: str) -> Callable[[], None]:
-    """One step of the gesture, called once a frame."""
+def _gesture(win, gesture: str) -> tuple[Callable[[], None], Callable[[], None]]:
+    """One step of the gesture (called once a frame), and what ends it."""
     from PySide6.QtCore import QPoint, QPointF, Qt
     from PySide6.QtTest import QTest
 
     view = win.view
     if gesture == "scroll":
         bar = view.horizontalScrollBar()
-        return lambda: bar.setValue(bar.value() + 40 if bar.value() < bar.maximum() else 0)
+        return lambda: bar.setValue(bar.value() + 40 if bar.value() < bar.maximum() else 0), _none
     if gesture == "zoom":
-        steps = {"n": 0}
+        steps = [0]
 
         def zoom() -> None:  # in and out by turns
-            steps["n"] += 1
-            view.zoom(1.25 if steps["n"] % 2 else 0.8)
+            steps[0] += 1
+            view.zoom(1.25 if steps[0] % 2 else 0.8)
 
-        return zoom
+        return zoom, _none
     if gesture == "drag":
         track = win.doc.project.tracks[0]
         clip = min(track.clips, key=lambda c: abs(c.start - 1.0))
@@ -124,29 +124,20 @@ def _gesture(win, gesture: str) -> Callable[[], None]:
         view.centerOn(rect.center())
         start = view.mapFromScene(QPointF(rect.center().x(), rect.center().y()))
         vp = view.viewport()
-        QTest.mousePress(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, start)
-        state = {"n": 0, "start": start}
+        button, plain = Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
+        QTest.mousePress(vp, button, plain, start)
+        moves = [0]
 
         def drag() -> None:
-            state["n"] += 1
-            QTest.mouseMove(vp, start + QPoint(3 * (state["n"] % 20), 0))
+            moves[0] += 1
+            QTest.mouseMove(vp, start + QPoint(3 * (moves[0] % 20), 0))
 
-        win._bench_drag = state  # released by _end_gesture
-        return drag
-    return lambda: None
+        return drag, lambda: QTest.mouseRelease(vp, button, plain, start)
+    return _none, _none
 
 
-def _end_gesture(win, gesture: str) -> None:
-    if gesture != "drag":
-        return
-    from PySide6.QtCore import Qt
-    from PySide6.QtTest import QTest
-
-    state = win._bench_drag
-    QTest.mouseRelease(
-        win.view.viewport(), Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier,
-        state["start"],
-    )  # fmt: skip
+def _none() -> None:
+    return None
 
 
 def _pump(app, seconds: float) -> None:
