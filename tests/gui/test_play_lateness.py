@@ -43,7 +43,7 @@ def test_late_blocks_are_counted_and_named_in_the_message_bar(window, qtbot):
     assert counts is not None and counts.late >= 1 and counts.gaps >= 1
     assert counts.worst >= 0.1  # the block after the stall: 150 ms less at most one lead
     named = [text for text, level in win.messages.history if LATE.match(text)]
-    assert named and named[-1] == counts.sentence() and win.messages.text == counts.sentence()
+    assert named and named[-1] == counts.sentence()  # named when the play ended, with all
 
 
 def test_an_unpaced_stream_plays_the_newest_state_from_the_next_block():
