@@ -108,6 +108,7 @@ class MainWindow(QMainWindow):
         self.player.position.connect(self._follow_playhead)
         self.player.finished.connect(self._play_finished)
         self.player.notice.connect(lambda text: self.messages.show_message(text, "error"))
+        self.player.warm_up_once_painted(self, lambda: self.doc.project)
         self._update_title()
         self._update_actions()
         self.transport.show_position(0.0, self.doc.project.axis)
