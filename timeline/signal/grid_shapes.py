@@ -1,0 +1,123 @@
+"""A shape's samples on a render grid by its compiled loop (timeline.signal.shape_kernels), where
+one applies: the same bits as the numpy forms, in one pass.
+
+The loops are used once numba is loaded (a large render loads it for its sums), or for a grid of
+COMPILED_SAMPLES or more, which repays loading it; smaller renders (every example) keep numpy
+and never load numba. Each function returns None where its loop does not apply (a shape reaching
+Nyquist, which numpy masks per sample; a spline of one or two points), and the caller takes the
+numpy form.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Mapping
+
+import numpy as np
+
+from timeline.signal.band_limit import HIGHEST_FREQUENCY, noise_level
+from timeline.signal.generators import TWO_PI
+
+# Grid samples from which the compiled loops are loaded for one shape (numba: ~0.5 s CPU once
+# per process; numpy's sine of 2 million samples takes ~25 ms).
+COMPILED_SAMPLES = 2_000_000
+_LOADED = ("timeline.signal.render_kernels", "timeline.signal.shape_kernels")
+_INDEX_LIMIT = 2.0**62  # |u * lattice| below this converts to int64 exactly
+_KINDS = ("sine", "chirp", "am", "detents", "noise")  # generators with a loop
+
+
+def compiled_wanted(n: int) -> bool:
+    """True when a grid of n samples takes the compiled loops."""
+    return n >= COMPILED_SAMPLES or any(name in sys.modules for name in _LOADED)
+
+
+def _ends(u0: float, du: float, n: int) -> tuple[float, float]:
+    """The grid's least and greatest u (its first and last: a grid is monotone)."""
+    first, last = u0, float(np.float64(n - 1) * du + u0)
+    return min(first, last), max(first, last)
+
+
+def generator_on_grid(generator: str, params: Mapping[str, float], duration: float, u0: float,
+                      du: float, n: int, nyquist: float) -> np.ndarray | None:  # fmt: skip
+    """The generator at u0 + du*i (i < n), band-limited to `nyquist` and zero outside
+    [0, duration], as GeneratorTile.render gives it without decimation; or None."""
+    if generator not in _KINDS or n <= 0 or not compiled_wanted(n):
+        return None
+    lo, hi = _ends(u0, du, n)
+    highest = HIGHEST_FREQUENCY.get(generator)
+    if highest is not None:
+        ends = np.array([lo, hi])
+        if np.broadcast_to(highest(ends, duration, params), ends.shape).max() >= nyquist:
+            return None  # masked per sample by band_limited
+    from timeline.signal import shape_kernels as k
+
+    out = np.empty(n)
+    p = params
+    if generator == "sine":
+        k.sine(u0, du, out, duration, TWO_PI * p["frequency"], p["phase"], p["amplitude"])
+    elif generator == "chirp" and not p["exponential"]:
+        k.chirp(u0, du, out, duration, p["f0"], 0.5 * (p["f1"] - p["f0"]), p["amplitude"])
+    elif generator == "chirp" and p["f0"] != p["f1"]:
+        rate = np.log(p["f1"] / p["f0"]) / duration
+        k.exponential_chirp(u0, du, out, duration, TWO_PI * p["f0"], rate, p["amplitude"])
+    elif generator == "am":
+        k.am(u0, du, out, duration, TWO_PI * p["carrier"], TWO_PI * p["modulation"], p["depth"],
+             1.0 + abs(p["depth"]), p["amplitude"])  # fmt: skip
+    elif generator == "detents":
+        period = duration / p["count"]
+        k.detents(u0, du, out, duration, p["phase"] * period, period, -p["amplitude"])
+    elif generator == "noise":
+        return _noise(k, p, duration, u0, du, out, nyquist, max(-lo, hi))
+    else:  # an exponential chirp of one frequency: numpy's own form
+        return None
+    return out
+
+
+def _noise(k, p: Mapping[str, float], duration: float, u0: float, du: float, out: np.ndarray,
+           nyquist: float, reach: float) -> np.ndarray | None:  # fmt: skip
+    """Value noise, or white noise at its level below Nyquist when its bandwidth is above."""
+    seed = np.uint64(int(p["seed"]) & 0xFFFFFFFFFFFFFFFF)
+    if p["bandwidth"] > nyquist:
+        lattice = 2.0 * nyquist
+        if min(reach, duration) * lattice + 1.0 >= _INDEX_LIMIT:
+            return None
+        k.white_noise(u0, du, out, duration, lattice, seed, noise_level(p, nyquist))
+        return out
+    lattice = 2.0 * p["bandwidth"]
+    if min(reach, duration) * lattice + 1.0 >= _INDEX_LIMIT:
+        return None
+    k.value_noise(u0, du, out, duration, lattice, seed, p["amplitude"])
+    return out
+
+
+def spline_on_grid(x: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray,
+                   end_values: tuple[float, float], duration: float, u0: float, du: float,
+                   n: int) -> np.ndarray | None:  # fmt: skip
+    """A spline tile's piecewise cubic (knots x, pieces a..d) at u0 + du*i, as SplineTile gives
+    it; or None."""
+    if n <= 0 or not compiled_wanted(n):
+        return None
+    from timeline.signal import shape_kernels as k
+
+    out = np.empty(n)
+    k.spline(u0, du, out, duration, x, a, b, c, d, end_values[0], end_values[1])
+    return out
+
+
+_FADE_SHAPES = {"linear": 0, "equal-power": 1, "exponential": 2, "s-curve": 3}
+
+
+def fade_on_grid(values: np.ndarray, lo: int, hi: int, pos0: float, rate: float,
+                 duration: float, fade_in: tuple[float, str] | None,
+                 fade_out: tuple[float, str] | None) -> bool:  # fmt: skip
+    """values[lo:hi] *= the fades' gains at clip offsets pos0 + k/rate ((length, shape) each, or
+    None), as fades.fade_envelope gives them; False (nothing done) where no loop applies."""
+    if not compiled_wanted(len(values)) or (fade_in is None and fade_out is None):
+        return False
+    from timeline.signal import shape_kernels as k
+
+    in_length, in_shape = fade_in if fade_in is not None else (0.0, "linear")
+    out_length, out_shape = fade_out if fade_out is not None else (0.0, "linear")
+    k.fade(values, lo, hi, pos0, rate, duration, in_length, _FADE_SHAPES[in_shape], out_length,
+           _FADE_SHAPES[out_shape])  # fmt: skip
+    return True
