@@ -188,11 +188,13 @@ def _emphasis(u, duration, amplitude, frequency):
 MAX_NOISE_LATTICE = 2.0**40
 
 
-def _nonzero(what: str, name: str) -> Callable[[Mapping[str, float], float], str | None]:
-    """A check that parameter `name` is not 0 (`what` names the shape in the sentence)."""
+def _nonzero(
+    generator: str, name: str, why: str
+) -> Callable[[Mapping[str, float], float], str | None]:
+    """A check that parameter `name` is not 0 (`why`: what it does, for the sentence)."""
 
     def check(p: Mapping[str, float], duration: float) -> str | None:
-        return None if p[name] != 0 else f"{what}'s {name} must not be 0"
+        return None if p[name] != 0 else f"a {generator} tile's {name} must not be 0 ({why})"
 
     return check
 
@@ -257,7 +259,7 @@ GENERATORS: dict[str, GeneratorSpec] = {
             {"count": 4.0, "amplitude": 1.0, "phase": 0.0},
             _detents,
             "series of detents (stable rest points)",
-            check=_nonzero("a detent series", "count"),
+            check=_nonzero("detents", "count", "the detents are duration / count apart"),
         ),
         GeneratorSpec(
             "wall", {"edge": 0.0, "width": 1.0, "direction": 1.0}, _wall, "spring wall past an edge"
@@ -273,7 +275,7 @@ GENERATORS: dict[str, GeneratorSpec] = {
             },
             _stribeck,
             "Stribeck friction curve over velocity",
-            check=_nonzero("a Stribeck curve", "stribeck_velocity"),
+            check=_nonzero("stribeck", "stribeck_velocity", "velocities are divided by it"),
         ),
         GeneratorSpec(
             "adsr",

@@ -1,34 +1,24 @@
 """A shape's samples on a render grid by its compiled loop (timeline.signal.shape_kernels), where
 one applies: the same bits as the numpy forms, in one pass.
 
-The loops are used once numba is loaded (a large render loads it for its sums), or for a grid of
-COMPILED_SAMPLES or more, which repays loading it; smaller renders (every example) keep numpy
-and never load numba. Each function returns None where its loop does not apply (a shape reaching
-Nyquist, which numpy masks per sample; a spline of one or two points), and the caller takes the
-numpy form.
+The loops are used where timeline.signal.compiled allows (numba loaded, or a grid large enough
+to repay loading it); smaller renders (every example) keep numpy. Each function returns None
+where its loop does not apply (a shape reaching Nyquist, which numpy masks per sample; a spline
+of one or two points), and the caller takes the numpy form.
 """
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Mapping
 
 import numpy as np
 
+from timeline.signal import compiled
 from timeline.signal.band_limit import HIGHEST_FREQUENCY, noise_level
 from timeline.signal.generators import TWO_PI
 
-# Grid samples from which the compiled loops are loaded for one shape (numba: ~0.5 s CPU once
-# per process; numpy's sine of 2 million samples takes ~25 ms).
-COMPILED_SAMPLES = 2_000_000
-_LOADED = ("timeline.signal.render_kernels", "timeline.signal.shape_kernels")
 _INDEX_LIMIT = 2.0**62  # |u * lattice| below this converts to int64 exactly
 _KINDS = ("sine", "chirp", "am", "detents", "noise")  # generators with a loop
-
-
-def compiled_wanted(n: int) -> bool:
-    """True when a grid of n samples takes the compiled loops."""
-    return n >= COMPILED_SAMPLES or any(name in sys.modules for name in _LOADED)
 
 
 def _ends(u0: float, du: float, n: int) -> tuple[float, float]:
@@ -41,7 +31,7 @@ def generator_on_grid(generator: str, params: Mapping[str, float], duration: flo
                       du: float, n: int, nyquist: float) -> np.ndarray | None:  # fmt: skip
     """The generator at u0 + du*i (i < n), band-limited to `nyquist` and zero outside
     [0, duration], as GeneratorTile.render gives it without decimation; or None."""
-    if generator not in _KINDS or n <= 0 or not compiled_wanted(n):
+    if generator not in _KINDS or n <= 0 or not compiled.compiled_wanted(n):
         return None
     lo, hi = _ends(u0, du, n)
     highest = HIGHEST_FREQUENCY.get(generator)
@@ -95,7 +85,7 @@ def spline_on_grid(x: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray, d
                    n: int) -> np.ndarray | None:  # fmt: skip
     """A spline tile's piecewise cubic (knots x, pieces a..d) at u0 + du*i, as SplineTile gives
     it; or None."""
-    if n <= 0 or not compiled_wanted(n):
+    if n <= 0 or not compiled.compiled_wanted(n):
         return None
     from timeline.signal import shape_kernels as k
 
@@ -112,7 +102,7 @@ def fade_on_grid(values: np.ndarray, lo: int, hi: int, pos0: float, rate: float,
                  fade_out: tuple[float, str] | None) -> bool:  # fmt: skip
     """values[lo:hi] *= the fades' gains at clip offsets pos0 + k/rate ((length, shape) each, or
     None), as fades.fade_envelope gives them; False (nothing done) where no loop applies."""
-    if not compiled_wanted(len(values)) or (fade_in is None and fade_out is None):
+    if not compiled.compiled_wanted(len(values)) or (fade_in is None and fade_out is None):
         return False
     from timeline.signal import shape_kernels as k
 
