@@ -10,8 +10,7 @@ from functools import cache
 
 import numpy as np
 
-from timeline.signal import samples
-from timeline.signal import compiled
+from timeline.signal import compiled, samples
 from timeline.signal.render_presets import QualityPreset
 
 # Samples of context kept either side of a segment so soxr's filter settles before the part used.
