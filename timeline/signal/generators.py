@@ -216,8 +216,8 @@ def _check_noise(p: Mapping[str, float], duration: float) -> str | None:
     if 2.0 * bandwidth * duration > MAX_NOISE_LATTICE:
         most = MAX_NOISE_LATTICE / (2.0 * duration)
         return (
-            f"a noise's bandwidth of {bandwidth:g} is too large for a tile of {duration:g}: at "
-            f"most {most:.3g} (a render keeps only what is below its Nyquist frequency anyway)"
+            f"a noise's bandwidth must be at most {most:.3g} for a tile of {duration:g}, not "
+            f"{bandwidth:g} (a render keeps only what is below its Nyquist frequency anyway)"
         )
     return None
 
