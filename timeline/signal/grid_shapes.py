@@ -36,8 +36,8 @@ def generator_on_grid(generator: str, params: Mapping[str, float], duration: flo
     lo, hi = _ends(u0, du, n)
     highest = HIGHEST_FREQUENCY.get(generator)
     if highest is not None:
-        ends = np.array([lo, hi])
-        if np.broadcast_to(highest(ends, duration, params), ends.shape).max() >= nyquist:
+        top = highest(np.array([lo, hi]), duration, params)  # a number, or one per end
+        if (top if isinstance(top, float) else float(np.max(top))) >= nyquist:
             return None  # masked per sample by band_limited
     from timeline.signal import shape_kernels as k
 
