@@ -117,16 +117,16 @@ def noise_spectrum(xi: np.ndarray) -> np.ndarray:
     return np.where(small, 1.0 - w * w / 15.0 + w**4 / 560.0, closed)
 
 
-_NODES, _WEIGHTS = np.polynomial.legendre.leggauss(64)
-
-
 def noise_level_below(bandwidth: float, nyquist: float) -> float:
     """RMS of value noise's part below `nyquist`, over a lattice value's RMS (for bandwidth above
     nyquist): sqrt(P(c)), P(c) = the integral of |H(xi)|^2 over |xi| < c = nyquist/(2 bandwidth)
     (Gauss-Legendre, 64 nodes: H^2 is smooth). P(1/2) = 0.684, P(c) -> 2c for small c."""
+    from numpy.polynomial.legendre import leggauss  # 22 ms to import: only when needed
+
+    nodes, weights = leggauss(64)
     c = nyquist / (2.0 * bandwidth)
-    xi = 0.5 * c * (_NODES + 1.0)
-    power = c * float(np.sum(_WEIGHTS * noise_spectrum(xi) ** 2))  # 2 * (c/2) * sum
+    xi = 0.5 * c * (nodes + 1.0)
+    power = c * float(np.sum(weights * noise_spectrum(xi) ** 2))  # 2 * (c/2) * sum
     return math.sqrt(power)
 
 
