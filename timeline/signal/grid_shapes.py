@@ -18,7 +18,7 @@ from timeline.signal.band_limit import HIGHEST_FREQUENCY, noise_level
 from timeline.signal.generators import TWO_PI
 
 _INDEX_LIMIT = 2.0**62  # |u * lattice| below this converts to int64 exactly
-_KINDS = ("sine", "chirp", "am", "detents", "noise")  # generators with a loop
+_KINDS = ("am", "noise")  # generators with a loop (a sine's libm sin costs the same in one)
 
 
 def _ends(u0: float, du: float, n: int) -> tuple[float, float]:
@@ -43,23 +43,10 @@ def generator_on_grid(generator: str, params: Mapping[str, float], duration: flo
 
     out = np.empty(n)
     p = params
-    if generator == "sine":
-        k.sine(u0, du, out, duration, TWO_PI * p["frequency"], p["phase"], p["amplitude"])
-    elif generator == "chirp" and not p["exponential"]:
-        k.chirp(u0, du, out, duration, p["f0"], 0.5 * (p["f1"] - p["f0"]), p["amplitude"])
-    elif generator == "chirp" and p["f0"] != p["f1"]:
-        rate = np.log(p["f1"] / p["f0"]) / duration
-        k.exponential_chirp(u0, du, out, duration, TWO_PI * p["f0"], rate, p["amplitude"])
-    elif generator == "am":
-        k.am(u0, du, out, duration, TWO_PI * p["carrier"], TWO_PI * p["modulation"], p["depth"],
-             1.0 + abs(p["depth"]), p["amplitude"])  # fmt: skip
-    elif generator == "detents":
-        period = duration / p["count"]
-        k.detents(u0, du, out, duration, p["phase"] * period, period, -p["amplitude"])
-    elif generator == "noise":
+    if generator == "noise":
         return _noise(k, p, duration, u0, du, out, nyquist, max(-lo, hi))
-    else:  # an exponential chirp of one frequency: numpy's own form
-        return None
+    k.am(u0, du, out, duration, TWO_PI * p["carrier"], TWO_PI * p["modulation"], p["depth"],
+         1.0 + abs(p["depth"]), p["amplitude"])  # fmt: skip
     return out
 
 

@@ -2,11 +2,13 @@
 
 Each loop builds the grid u = u0 + du*i itself, evaluates the shape, zeroes it outside the tile
 and writes the result once, where the numpy forms (timeline.signal.generators, splines, fades)
-make a temporary array per operation. Every loop performs the numpy form's operations in its
-order, each rounded on its own (numba neither reorders nor fuses a multiply-add without
-fastmath), and calls the same libm functions numpy calls for float64 (sin, cos, exp, expm1,
-pow), so it gives numpy's bits: tests/core/test_shape_kernels.py holds each to
-np.array_equal against its numpy form. Loaded only where timeline.signal.compiled allows it.
+make a temporary array per operation. Only kinds where that pays have a loop: AM, noise, splines
+and fades. A sine, chirp or detent series is one libm sin per sample, which costs the same in a
+loop (measured: 1.00-1.03x), so they keep numpy. Every loop performs the numpy form's operations
+in its order, each rounded on its own (numba neither reorders nor fuses a multiply-add without
+fastmath), and calls the same libm functions numpy calls for float64 (sin, cos, pow), so it
+gives numpy's bits: tests/core/test_shape_kernels.py holds each to np.array_equal against its
+numpy form. Loaded only where timeline.signal.compiled allows it.
 """
 
 from __future__ import annotations
@@ -29,40 +31,6 @@ def _grid(u0: float, du: float, i: int) -> float:
 
 
 @njit(cache=True)
-def sine(u0: float, du: float, out: np.ndarray, duration: float, omega: float, phase: float,
-         amplitude: float) -> None:  # fmt: skip
-    """amplitude * sin(omega * u + phase), omega = 2 pi frequency; zero outside [0, duration]."""
-    for i in range(out.shape[0]):
-        u = _grid(u0, du, i)
-        out[i] = 0.0 if u < 0.0 or u > duration else amplitude * math.sin(omega * u + phase)
-
-
-@njit(cache=True)
-def chirp(u0: float, du: float, out: np.ndarray, duration: float, f0: float, half_sweep: float,
-          amplitude: float) -> None:  # fmt: skip
-    """A linear chirp: amplitude * sin(2 pi (f0 u + half_sweep u u / duration)),
-    half_sweep = 0.5 (f1 - f0)."""
-    for i in range(out.shape[0]):
-        u = _grid(u0, du, i)
-        if u < 0.0 or u > duration:
-            out[i] = 0.0
-        else:
-            out[i] = amplitude * math.sin(TWO_PI * (f0 * u + half_sweep * u * u / duration))
-
-
-@njit(cache=True)
-def exponential_chirp(u0: float, du: float, out: np.ndarray, duration: float, omega0: float,
-                      rate: float, amplitude: float) -> None:  # fmt: skip
-    """amplitude * sin(omega0 * expm1(rate u) / rate), omega0 = 2 pi f0."""
-    for i in range(out.shape[0]):
-        u = _grid(u0, du, i)
-        if u < 0.0 or u > duration:
-            out[i] = 0.0
-        else:
-            out[i] = amplitude * math.sin(omega0 * math.expm1(rate * u) / rate)
-
-
-@njit(cache=True)
 def am(u0: float, du: float, out: np.ndarray, duration: float, omega_c: float, omega_m: float,
        depth: float, norm: float, amplitude: float) -> None:  # fmt: skip
     """amplitude * ((1 + depth sin(omega_m u)) / norm) * sin(omega_c u), norm = 1 + |depth|."""
@@ -73,18 +41,6 @@ def am(u0: float, du: float, out: np.ndarray, duration: float, omega_c: float, o
         else:
             envelope = (1.0 + depth * math.sin(omega_m * u)) / norm
             out[i] = amplitude * envelope * math.sin(omega_c * u)
-
-
-@njit(cache=True)
-def detents(u0: float, du: float, out: np.ndarray, duration: float, shift: float, period: float,
-            negated: float) -> None:  # fmt: skip
-    """negated * sin(2 pi (u - shift) / period), negated = -amplitude, shift = phase * period."""
-    for i in range(out.shape[0]):
-        u = _grid(u0, du, i)
-        if u < 0.0 or u > duration:
-            out[i] = 0.0
-        else:
-            out[i] = negated * math.sin(TWO_PI * (u - shift) / period)
 
 
 @njit(cache=True)
