@@ -40,7 +40,7 @@ class Work:
     """One batched evaluation of a tile (or of fades) for all the clips that need it."""
 
     label: str
-    run: Callable[[], np.ndarray]
+    run: Callable[[], object]
 
 
 def _source_positions(clip: Clip, tile: Tile, pos: np.ndarray) -> tuple[np.ndarray, float]:

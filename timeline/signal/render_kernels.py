@@ -14,6 +14,8 @@ their first call and cached on disk (cache=True), so later processes only load t
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import cast
 
 import numpy as np
 from llvmlite import ir
@@ -26,7 +28,7 @@ _DELAY_BLOCK = 256  # outputs of the fractional delay computed side by side
 
 
 @intrinsic
-def _fma(typingctx, a, b, c):  # noqa: ARG001 (numba's signature for an intrinsic)
+def _fma_intrinsic(typingctx, a, b, c):  # noqa: ARG001 (numba's signature for an intrinsic)
     """a * b + c rounded once (LLVM's fma: the instruction on x86-64 with FMA)."""
     signature = types.float64(types.float64, types.float64, types.float64)
 
@@ -38,6 +40,9 @@ def _fma(typingctx, a, b, c):  # noqa: ARG001 (numba's signature for an intrinsi
         return builder.call(fn, args)
 
     return signature, codegen
+
+
+_fma = cast("Callable[[float, float, float], float]", _fma_intrinsic)  # as loops call it
 
 
 @njit(cache=True)
