@@ -39,7 +39,7 @@ def _same_bits(tile, u0: float, du: float, n: int) -> None:
     compiled = tile.render(u0, du, n, QUALITY)
     expected = _numpy_form(lambda: tile.render(u0, du, n, QUALITY))
     assert compiled.dtype == expected.dtype == np.float64
-    assert np.array_equal(compiled, expected)
+    assert np.array_equal(compiled, expected, equal_nan=True)  # a 1e300 curve overflows alike
 
 
 def _tile(kind: str, data: st.DataObject, duration: float, amplitude: float):

@@ -5,13 +5,13 @@ This module times the first part with the functions the mixer itself calls, but 
 positions of all clips that read one tile at one spacing gathered into one array beforehand, so
 each function runs once per (tile, spacing) instead of once per clip:
 
-* generators and splines: the tile's own render (its compiled loop once numba is loaded, else
-  `band_limited` on the tile's function; the Fourier sum of a band-limited square) over as many
-  samples at the clips' spacing, on grids spanning the whole tile;
+* generators: `band_limited` on the tile's own function (np.sin for sines, the chirp's phase, the
+  Fourier sum of a band-limited square, ...);
+* splines: the curve's pieces over the sorted positions;
 * recordings: soxr once per (tile, step) over the whole recording, then the 64-tap fractional
   delay over every sample of the clips that start off the resampled grid (what each clip needs
   on top of a shared resampling), or linear/cubic interpolation with the draft preset;
-* fades: the fade gain applied to as many samples as lie inside fades, one fade per shape.
+* fades: the fade gain over every sample inside a fade.
 
 What is left out is the per-clip bookkeeping: placing clips, building each grid, scaling, the
 per-call overhead of numpy and soxr on every clip, and the add (the memory pass measures that).
@@ -28,8 +28,8 @@ import numpy as np
 
 from timeline.model import Clip, Project
 from timeline.rendering.clip_render import clip_sample_range
+from timeline.signal.band_limit import band_limited
 from timeline.signal.fades import fade_in_gain
-from timeline.signal.grid_shapes import fade_on_grid
 from timeline.signal.render_presets import QualityPreset, preset
 from timeline.signal.resample import _SOXR_MARGIN, _aligned_start, _fractional_delay, _interpolate
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
@@ -40,7 +40,7 @@ class Work:
     """One batched evaluation of a tile (or of fades) for all the clips that need it."""
 
     label: str
-    run: Callable[[], object]
+    run: Callable[[], np.ndarray]
 
 
 def _source_positions(clip: Clip, tile: Tile, pos: np.ndarray) -> tuple[np.ndarray, float]:
@@ -87,24 +87,6 @@ def _recording_work(tile: SampledTile, step: float, starts: list[tuple[float, in
     return works
 
 
-def _across(tile: GeneratorTile | SplineTile, du: float, count: int,
-            quality: QualityPreset) -> None:  # fmt: skip
-    """`count` samples of the tile at spacing du, rendered as the mixer renders a clip's (its
-    compiled loop, or numpy), on grids spanning the whole tile: no per-clip call."""
-    per_grid = max(1, int(tile.duration / du) + 1)
-    for first in range(0, count, per_grid):
-        tile.render(0.0, du, min(per_grid, count - first), quality)
-
-
-def _faded(shape: str, count: int, rate: float) -> None:
-    """`count` samples multiplied by a fade's gain, as the mixer applies fades (one fade of
-    `count` samples: its compiled loop, or numpy)."""
-    values = np.ones(count)
-    length = count / rate
-    if not fade_on_grid(values, 0, count, 0.0, rate, length, (length, shape), None):
-        values *= fade_in_gain(np.arange(count) / rate / length, shape)
-
-
 def evaluation_work(project: Project, start: float, stop: float,
                     quality: str | QualityPreset = "normal") -> list[Work]:  # fmt: skip
     """The batched evaluations that a render of the project's tracks on [start, stop) needs."""
@@ -139,16 +121,25 @@ def evaluation_work(project: Project, start: float, stop: float,
                     fades[fade.shape].append(x[x < fade.length] / fade.length)
     for (tile_id, du), parts in positions.items():
         tile = project.tile(tile_id)
-        assert isinstance(tile, GeneratorTile | SplineTile)  # positions holds these only
-        count = sum(part.size for part in parts)
-        works.append(Work(tile.name, lambda t=tile, d=du, c=count: _across(t, d, c, q)))
+        u = np.sort(np.concatenate(parts))
+        lo, hi = float(u[0]), float(u[-1])
+        if isinstance(tile, SplineTile):
+            works.append(Work(tile.name, lambda t=tile, u=u, lo=lo, hi=hi:
+                              t._values(u, lo, hi)))  # fmt: skip
+            continue
+        assert isinstance(tile, GeneratorTile)  # positions holds generator and spline tiles only
+        nyquist = 0.5 / du
+        params = dict(tile.params)
+        works.append(Work(tile.name, lambda t=tile, u=u, lo=lo, hi=hi, f=nyquist, p=params:
+                          band_limited(t.generator, u, f, t.duration, p,
+                                       lambda v: t._values(v, lo, hi), (lo, hi))))  # fmt: skip
     for (tile_id, step), starts in recordings.items():
         recording = project.tile(tile_id)
         assert isinstance(recording, SampledTile)  # recordings holds sampled tiles only
         works += _recording_work(recording, step, starts, q)
     for shape, parts in fades.items():
-        count = sum(part.size for part in parts)
-        works.append(Work(f"{shape} fades", lambda s=shape, c=count: _faded(s, c, rate)))
+        x = np.concatenate(parts)
+        works.append(Work(f"{shape} fades", lambda s=shape, x=x: fade_in_gain(x, s)))
     return works
 
 
