@@ -28,10 +28,12 @@ def set_param(project: Project, tile_id: str, name: str, value: float) -> Projec
     if name not in dict(tile.params):
         raise EditError(f"generator {tile.generator!r} has no parameter {name!r}")
     params = tuple((k, float(value) if k == name else v) for k, v in tile.params)
-    new = GeneratorTile(tile.generator, tile.duration, params, tile.name)
-    try:
+    if not math.isfinite(float(value)):
+        raise EditError(f"{name} must be a finite number, not {value!r}")
+    try:  # the tile refuses what its generator cannot render (GeneratorSpec.check)
+        new = GeneratorTile(tile.generator, tile.duration, params, tile.name)
         new.evaluate(_probe(new))
-    except (ValueError, ZeroDivisionError) as exc:
+    except (EditError, ValueError, ZeroDivisionError) as exc:
         raise EditError(f"{name} = {value:g} does not make a {tile.generator}: {exc}") from None
     project = edits.replace_tile(project, tile_id, new)
     natural = GENERATORS[tile.generator].length
