@@ -7,7 +7,6 @@ import math
 import numpy as np
 from PySide6.QtCore import QLineF, QPointF, QRectF, Qt
 from PySide6.QtGui import QBrush, QColor, QFont, QPainter, QPen, QPolygonF
-from PySide6.QtWidgets import QGraphicsItem, QStyleOptionGraphicsItem, QWidget
 
 from timeline.model import Clip
 from timeline.signal.fades import fade_in_gain
@@ -29,11 +28,16 @@ def value_offset(value: float, height: float) -> float:
     return height / 2 - max(-1.2, min(1.2, value / VALUE_RANGE)) * half
 
 
-class ClipItem(QGraphicsItem):
-    """Draws one clip; the view decides what a mouse press on it means (see `zone`)."""
+class ClipItem:
+    """One clip as the timeline shows it: where it is, what a press on it grabs, how it paints.
+
+    Not a QGraphicsItem: the scene's clip layer (timeline_scene.ClipLayer) paints the visible
+    clips, so zooming a 20,000-clip project moves no item. Positions are computed from the
+    geometry when asked, in scene pixels at the current zoom; `pos`, `mapToScene`,
+    `sceneBoundingRect` and friends answer as an item at that place would.
+    """
 
     def __init__(self, geometry: Geometry, clip: Clip, tile: Tile) -> None:
-        super().__init__()
         self.lane_geometry = geometry
         self.clip = clip  # shown once update_from has placed it
         self.tile = tile
@@ -41,9 +45,8 @@ class ClipItem(QGraphicsItem):
         self.rate = 10_000.0
         self.selected = False
         self.track_id = ""
-        self.setFlag(QGraphicsItem.GraphicsItemFlag.ItemUsesExtendedStyleOption)
-        self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
-        self._w = 1.0
+        self.lane = 0
+        self.axis = "time"
         self._h = 1.0
         self._key: tuple[object, ...] = ()
         self.muted = False
@@ -61,46 +64,53 @@ class ClipItem(QGraphicsItem):
         muted: bool = False,
         covered: tuple[tuple[float, float], ...] = (),
         axis: str = "time",
-    ) -> None:
-        """Show a clip state at a lane (cheap when nothing changed).
+    ) -> bool:
+        """Show a clip state at a lane; False when nothing changed.
 
         A muted (or not soloed) track's clips are dimmed; `covered` spans (axis units) where
-        another clip overlaps this one are hatched.
+        another clip overlaps this one are hatched. The zoom is not part of the state: a zoom
+        changes no clip.
         """
-        g = self.lane_geometry
-        w = max(2.0, g.x(clip.duration))
-        h = g.lane_height - 2 * CLIP_MARGIN
-        key = (
-            clip,
-            id(tile),
-            lane,
-            colour,
-            selected,
-            w,
-            h,
-            g.px_per_unit,
-            rate,
-            muted,
-            covered,
-            axis,
-        )
+        h = self.lane_geometry.lane_height - 2 * CLIP_MARGIN
+        key = (clip, id(tile), lane, colour, selected, h, rate, muted, covered, axis)
         if key == self._key:
-            return  # nothing to do: no Qt calls for the clips an edit did not touch
+            return False
         self._key = key
-        if (w, h) != (self._w, self._h):
-            self.prepareGeometryChange()
         self.clip, self.tile, self.track_id, self.rate = clip, tile, track_id, rate
-        self.colour, self.selected, self._w, self._h = QColor(colour), selected, w, h
-        self.setPos(g.x(clip.start), g.lane_top(lane) + CLIP_MARGIN)
-        self.setZValue(2 if selected else 1)
-        self.muted, self.covered = muted, covered
-        self.setOpacity(0.35 if muted else 1.0)
-        self.setToolTip(clip_tip(clip, tile, muted, covered, axis))
-        self.update()
+        self.colour, self.selected, self._h, self.lane = QColor(colour), selected, h, lane
+        self.muted, self.covered, self.axis = muted, covered, axis
+        return True
+
+    @property
+    def _w(self) -> float:
+        """Width in pixels at the current zoom (at least 2)."""
+        return max(2.0, self.lane_geometry.x(self.clip.duration))
+
+    def pos(self) -> QPointF:
+        """Scene position of the clip's top-left corner."""
+        g = self.lane_geometry
+        return QPointF(g.x(self.clip.start), g.lane_top(self.lane) + CLIP_MARGIN)
+
+    def mapToScene(self, point: QPointF) -> QPointF:  # noqa: N802 - QGraphicsItem's name
+        return point + self.pos()
+
+    def mapFromScene(self, point: QPointF) -> QPointF:  # noqa: N802 - QGraphicsItem's name
+        return point - self.pos()
+
+    def sceneBoundingRect(self) -> QRectF:  # noqa: N802 - QGraphicsItem's name
+        return self.boundingRect().translated(self.pos())
+
+    def opacity(self) -> float:
+        """How opaque it is drawn: a muted (or not soloed) track's clips are dimmed."""
+        return 0.35 if self.muted else 1.0
+
+    def toolTip(self) -> str:  # noqa: N802 - QGraphicsItem's name
+        return clip_tip(self.clip, self.tile, self.muted, self.covered, self.axis)
 
     # --- geometry and hit zones -----------------------------------------------------------
 
-    def boundingRect(self) -> QRectF:
+    def boundingRect(self) -> QRectF:  # noqa: N802 - QGraphicsItem's name
+        """Item rectangle, including the grab area of a narrow clip and a pixel of outline."""
         pad = self._pad()
         return QRectF(-1 - pad, -1, self._w + 2 + 2 * pad, self._h + 2)
 
@@ -149,18 +159,16 @@ class ClipItem(QGraphicsItem):
 
     # --- painting -------------------------------------------------------------------------
 
-    def paint(
-        self, painter: QPainter, option: QStyleOptionGraphicsItem, widget: QWidget | None = None
-    ) -> None:
+    def paint(self, painter: QPainter, exposed: QRectF) -> None:
+        """Draw the clip in item coordinates (the painter translated to `pos`); `exposed` is the
+        part to draw, in the same coordinates."""
         clip, w, h = self.clip, self._w, self._h
-        if clip is None:
-            return
         fill = QColor(self.colour)
         fill.setAlpha(70 if not self.selected else 110)
         painter.setPen(QPen(self.colour.darker(130), 1))
         painter.setBrush(QBrush(fill))
         painter.drawRoundedRect(QRectF(0, 0, w, h), 4, 4)
-        exposed = option.exposedRect.intersected(QRectF(0, 0, w, h))
+        exposed = exposed.intersected(QRectF(0, 0, w, h))
         self._paint_wave(painter, exposed)
         if w < GRAB_PX:
             self._paint_marker(painter)

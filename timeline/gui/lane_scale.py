@@ -30,11 +30,16 @@ def level_y(g: Geometry, lane: int, value: float) -> float:
     return g.lane_top(lane) + CLIP_MARGIN + value_offset(value, h)
 
 
+def visible_lanes(g: Geometry, lanes: int, rect: QRectF) -> range:
+    """The lanes (of `lanes`) a scene rectangle crosses."""
+    return range(max(0, g.lane_at(rect.top())), min(lanes, g.lane_at(rect.bottom()) + 1))
+
+
 def draw_grid(painter: QPainter, g: Geometry, project: Project | None, rect: QRectF) -> None:
     """Light horizontal lines at the scale's levels on every lane (under the clips)."""
     if project is None:
         return
-    for lane in range(len(project.tracks)):
+    for lane in visible_lanes(g, len(project.tracks), rect):
         for value in LEVELS:
             y = level_y(g, lane, value)
             if rect.top() <= y <= rect.bottom():
@@ -50,7 +55,8 @@ def draw_labels(painter: QPainter, g: Geometry, project: Project | None, visible
     font = QFont()
     font.setPointSizeF(7.0)
     painter.setFont(font)
-    for lane, track in enumerate(project.tracks):
+    for lane in visible_lanes(g, len(project.tracks), visible):
+        track = project.tracks[lane]
         for value in LABELLED:
             y = level_y(g, lane, value)
             text = full_scale_text(track, value)

@@ -179,10 +179,8 @@ class TimelineView(QGraphicsView):
         self.readout.show()
 
     def item_at(self, pos: QPointF) -> ClipItem | None:
-        for item in self.items(pos.toPoint()):
-            if isinstance(item, ClipItem):
-                return item
-        return None
+        """The clip under a viewport position (within a narrow clip's grab area)."""
+        return self.scene().clip_at(self.mapToScene(pos.toPoint()))
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         if event.button() != Qt.MouseButton.LeftButton:
