@@ -17,6 +17,7 @@ from timeline.plugins import discovery
 ORDER = (
     "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
     "accumulation", "edit-to-feel", "scale", "convert", "formats", "waves", "design-drag",
+    "editor",
 )  # fmt: skip
 
 BUILT_IN = {
@@ -31,6 +32,7 @@ BUILT_IN = {
     "formats": "timeline.bench.formats",
     "waves": "timeline.bench.waves",
     "design-drag": "timeline.bench.design_drag",
+    "editor": "timeline.bench.editor",
 }
 
 

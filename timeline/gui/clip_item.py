@@ -167,7 +167,11 @@ class ClipItem:
         fill.setAlpha(70 if not self.selected else 110)
         painter.setPen(QPen(self.colour.darker(130), 1))
         painter.setBrush(QBrush(fill))
-        painter.drawRoundedRect(QRectF(0, 0, w, h), 4, 4)
+        # square corners on whole pixels, not antialiased: a rounded antialiased rectangle
+        # took 1.4 ms to fill at this size
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)
+        painter.drawRect(QRectF(0, 0, w, h))
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
         exposed = exposed.intersected(QRectF(0, 0, w, h))
         self._paint_wave(painter, exposed)
         if w < GRAB_PX:
@@ -187,7 +191,7 @@ class ClipItem:
         if self.selected:
             painter.setBrush(Qt.BrushStyle.NoBrush)
             painter.setPen(QPen(QColor("#1a1a1a"), 2))
-            painter.drawRoundedRect(QRectF(1, 1, w - 2, h - 2), 4, 4)
+            painter.drawRect(QRectF(1, 1, w - 2, h - 2))
 
     def _paint_wave(self, painter: QPainter, exposed: QRectF) -> None:
         clip = self.clip

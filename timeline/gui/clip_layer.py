@@ -2,9 +2,10 @@
 
 Zooming a 20,000-clip project used to update every clip's QGraphicsItem (0.9-1.4 s a step) and
 a repaint walked them all; here a zoom changes no clip and a paint finds the visible clips of each
-visible lane by bisection. Clips narrower than GRAB_PX are drawn in batches when many are
-visible (their bodies and grab flags merged into runs of pixels), so a whole project at fit
-costs a few drawing calls per lane; wider clips draw their waveform, fades and label.
+visible lane by bisection. A lane showing BATCH_FROM clips or more draws them as boxes in a few
+calls (narrow ones and their grab flags merged into runs of pixels), so a whole project at fit
+costs the same as a few clips; a lane showing fewer draws each clip's waveform, fades and label
+(level of detail: zoom in on a crowded lane to see its waves).
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from PySide6.QtWidgets import QGraphicsItem
 from .clip_item import GRAB_PX, ClipItem
 from .geometry import CLIP_MARGIN, Geometry
 
-BATCH_FROM = 40  # narrow clips visible on a lane from which they are drawn merged
+BATCH_FROM = 8  # clips visible on a lane from which they are drawn as boxes
 
 
 class LaneClips:
@@ -90,16 +91,13 @@ class ClipLayer(QGraphicsItem):
 
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
         exposed = option.exposedRect
-        g = self.lane_geometry
         for lane, clips, found in self.visible(exposed):
             if found.size == 0:
                 continue
             painter.setOpacity(0.35 if clips.muted else 1.0)
-            width = (clips.ends[found] - clips.starts[found]) * g.px_per_unit
-            narrow = found[width < GRAB_PX]
-            if narrow.size >= BATCH_FROM:
-                self._paint_merged(painter, lane, clips, narrow)
-                found = found[width >= GRAB_PX]
+            if found.size >= BATCH_FROM:
+                self._paint_boxes(painter, lane, clips, found)
+                continue
             items = [clips.items[i] for i in found.tolist()]
             # selected clips on top, as their items were
             for item in sorted(items, key=lambda item: item.selected):
@@ -110,26 +108,30 @@ class ClipLayer(QGraphicsItem):
                 painter.restore()
         painter.setOpacity(1.0)
 
-    def _paint_merged(
+    def _paint_boxes(
         self, painter: QPainter, lane: int, clips: LaneClips, found: np.ndarray
     ) -> None:
-        """Many narrow clips: their bodies and grab flags as runs of pixels, a few calls."""
+        """Many clips on a lane: boxes (narrow ones and their grab flags merged into runs of
+        pixels), no waveform or label, a few drawing calls whatever the count."""
         g = self.lane_geometry
         top = g.lane_top(lane) + CLIP_MARGIN
         h = g.lane_height - 2 * CLIP_MARGIN
         x0 = clips.starts[found] * g.px_per_unit
         x1 = np.maximum(clips.ends[found] * g.px_per_unit, x0 + 2.0)
+        narrow = (x1 - x0) < GRAB_PX
         colour = clips.colour
         painter.save()
-        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # runs of whole pixels
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # whole pixels
         fill = QColor(colour)
         fill.setAlpha(90)
         painter.setPen(QPen(colour.darker(130), 1))
         painter.setBrush(QBrush(fill))
-        painter.drawRects([QRectF(a, top, b - a, h) for a, b in runs(x0, x1)])
+        spans = runs(x0[narrow], x1[narrow])
+        spans += zip(x0[~narrow].tolist(), x1[~narrow].tolist(), strict=True)
+        painter.drawRects([QRectF(a, top, b - a, h) for a, b in spans])
         painter.setBrush(QBrush(colour))
-        middle = (x0 + x1) / 2
-        half = max(GRAB_PX / 2, 0.0)
+        middle = (x0[narrow] + x1[narrow]) / 2
+        half = GRAB_PX / 2
         for a, b in runs(middle - half, middle + half):
             inset = min(half, (b - a) / 2)
             painter.drawPolygon(

@@ -163,6 +163,7 @@ class ShadeLayer(QGraphicsItem):
         font = painter.font()
         font.setPointSizeF(7.5)
         painter.setFont(font)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # rectangles on pixels
         for grp in self.groups:
             lanes = [lane for lane in grp.lanes if lane in lanes_shown]
             if not lanes:
@@ -236,7 +237,9 @@ class FindingsOverlay(QObject):
         self._stop = threading.Event()  # set to stop the latest check
         self._lock = threading.Lock()
         self.counts: Counter[str] = Counter()  # started, finished, cancelled (for the bench)
+        self._running: dict[int, threading.Event] = {}  # version -> stop, of started checks
         self._closed = False
+        self._drawn: object = None  # the report and lane terms the shading was grouped for
         self._timer = QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.timeout.connect(self._start)
@@ -259,6 +262,11 @@ class FindingsOverlay(QObject):
     def busy(self) -> bool:
         """True while a check is queued or running."""
         return self._future is not None and not self._future.done()
+
+    def stale_running(self) -> list[int]:
+        """Versions of checks still running though an edit has made them stale."""
+        with self._lock:
+            return [v for v in self._running if v != self.version]
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
         if event.type() == QEvent.Type.Paint:
@@ -316,13 +324,19 @@ class FindingsOverlay(QObject):
         self._cancel()
         self._stop = stop = threading.Event()
         future = self._pool.submit(
-            self._run, project, info, self.player.hand, self.rendered.shown, stop
+            self._run, project, info, self.player.hand, self.rendered.shown, stop, version
         )
         self._future = future
         future.add_done_callback(lambda f: self._finished(f, version))
 
     def _run(
-        self, project: Project, info: DeviceInfo, hand: Hand, render: bool, stop: threading.Event
+        self,
+        project: Project,
+        info: DeviceInfo,
+        hand: Hand,
+        render: bool,
+        stop: threading.Event,
+        version: int,
     ) -> Checked | HapticTimelineError | None:
         """Worker thread: the check, or None when it was stopped as stale."""
 
@@ -330,12 +344,17 @@ class FindingsOverlay(QObject):
             if stop.is_set():
                 raise CheckCancelled
 
-        self._count("started")
+        with self._lock:
+            self.counts["started"] += 1
+            self._running[version] = stop
         try:
             result = _check(project, info, hand, render, interrupt)
         except CheckCancelled:
             self._count("cancelled")
             return None
+        finally:
+            with self._lock:
+                del self._running[version]
         self._count("finished")
         return result
 
@@ -386,7 +405,10 @@ class FindingsOverlay(QObject):
 
     def _draw(self, project: Project, report: Report) -> None:
         self.layer.resize(self.view.scene().sceneRect())
-        self.layer.show(project, report.findings)
+        terms = tuple(track_kind(t.kind).term for t in project.tracks)
+        if self._drawn != (id(report), terms):  # a zoom regroups nothing
+            self._drawn = (id(report), terms)
+            self.layer.show(project, report.findings)
         if self.traces or self.rendered.items:
             geometry = self.view.scene().lane_geometry
             self.rendered.draw(project, list(self.traces), list(self.peaks), geometry)

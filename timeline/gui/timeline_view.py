@@ -141,8 +141,11 @@ class TimelineView(QGraphicsView):
             bar.setValue(int(x - 0.1 * width))
 
     def drawBackground(self, painter: QPainter, rect) -> None:
+        painter.save()
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # level lines on pixels
         super().drawBackground(painter, rect)
         lane_scale.draw_grid(painter, self.lane_geometry, self.doc.project, rect)
+        painter.restore()
 
     def drawForeground(self, painter: QPainter, rect) -> None:
         visible = self.mapToScene(self.viewport().rect()).boundingRect()
