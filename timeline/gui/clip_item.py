@@ -22,6 +22,14 @@ SHAPE_LABEL_PX = 60.0  # fades this long show their shape's name
 VALUE_RANGE = 1.0  # the lane shows -1 .. 1 of the tile's full scale
 
 
+def hairline(colour: QColor, style: Qt.PenStyle = Qt.PenStyle.SolidLine) -> QPen:
+    """A 1-pixel cosmetic pen: antialiased lines with it cost a tenth of a 1-unit-wide pen's
+    (Qt strokes the latter as a path)."""
+    pen = QPen(colour, 1, style)
+    pen.setCosmetic(True)
+    return pen
+
+
 def value_offset(value: float, height: float) -> float:
     """Distance from a clip's top to where a value (tile units) is drawn, in a clip this high."""
     half = height / 2 - 3
@@ -165,7 +173,7 @@ class ClipItem:
         clip, w, h = self.clip, self._w, self._h
         fill = QColor(self.colour)
         fill.setAlpha(70 if not self.selected else 110)
-        painter.setPen(QPen(self.colour.darker(130), 1))
+        painter.setPen(hairline(self.colour.darker(130)))
         painter.setBrush(QBrush(fill))
         # square corners on whole pixels, not antialiased: a rounded antialiased rectangle
         # took 1.4 ms to fill at this size
@@ -179,13 +187,13 @@ class ClipItem:
         else:
             self._paint_fades(painter)
         if clip.pivot != 0.0 or self.selected:
-            painter.setPen(QPen(QColor("#444444"), 1, Qt.PenStyle.DashLine))
+            painter.setPen(hairline(QColor("#444444"), Qt.PenStyle.DashLine))
             y = self.value_y(clip.pivot)
             painter.drawLine(QPointF(0, y), QPointF(w, y))
         self._paint_label(painter)
         for a, b in self.covered:
             x0, x1 = self.lane_geometry.x(a - clip.start), self.lane_geometry.x(b - clip.start)
-            painter.setPen(QPen(QColor("#b02020"), 1))
+            painter.setPen(hairline(QColor("#b02020")))
             painter.setBrush(QBrush(QColor(200, 40, 40, 120), Qt.BrushStyle.BDiagPattern))
             painter.drawRect(QRectF(x0, h - 10, x1 - x0, 10))
         if self.selected:
@@ -209,12 +217,12 @@ class ClipItem:
         bottom = self._value_ys(np.minimum(lo, np.r_[hi[:1], hi[:-1]]))
         top, bottom = top - 0.5, np.maximum(bottom, top) + 0.5  # at least a pixel: no gaps
         xs = x0 + np.arange(count) + 0.5
-        painter.setPen(QPen(self.colour.darker(150), 1))
+        painter.setPen(hairline(self.colour.darker(150)))
         painter.drawLines(
             [QLineF(x, a, x, b) for x, a, b in zip(xs.tolist(), top.tolist(), bottom.tolist(),
                                                    strict=True)]
         )  # fmt: skip
-        painter.setPen(QPen(QColor(0, 0, 0, 60), 1))
+        painter.setPen(hairline(QColor(0, 0, 0, 60)))
         painter.drawLine(
             QPointF(exposed.left(), self.value_y(0)), QPointF(exposed.right(), self.value_y(0))
         )
@@ -222,7 +230,7 @@ class ClipItem:
     def _paint_marker(self, painter: QPainter) -> None:
         """A flag over a narrow clip, as wide as its grab area, so it can be seen and grabbed."""
         pad, w = self._pad(), self._w
-        painter.setPen(QPen(self.colour.darker(130), 1))
+        painter.setPen(hairline(self.colour.darker(130)))
         painter.setBrush(QBrush(self.colour))
         painter.drawPolygon(
             QPolygonF([QPointF(-pad, 0), QPointF(w + pad, 0), QPointF(w / 2, GRAB_PX)])
@@ -230,7 +238,7 @@ class ClipItem:
 
     def _paint_fades(self, painter: QPainter) -> None:
         clip = self.clip
-        painter.setPen(QPen(QColor("#202020"), 1))
+        painter.setPen(hairline(QColor("#202020")))
         for which, fade in (("in", clip.fade_in), ("out", clip.fade_out)):
             length = self.lane_geometry.x(fade.length)
             if length >= 1:

@@ -124,11 +124,16 @@ class ClipLayer(QGraphicsItem):
         painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # whole pixels
         fill = QColor(colour)
         fill.setAlpha(90)
-        painter.setPen(QPen(colour.darker(130), 1))
         painter.setBrush(QBrush(fill))
-        spans = runs(x0[narrow], x1[narrow])
-        spans += zip(x0[~narrow].tolist(), x1[~narrow].tolist(), strict=True)
-        painter.drawRects([QRectF(a, top, b - a, h) for a, b in spans])
+        painter.setPen(QPen(colour.darker(130), 1))
+        wide = zip(x0[~narrow].tolist(), x1[~narrow].tolist(), strict=True)
+        painter.drawRects([QRectF(a, top, b - a, h) for a, b in wide])
+        painter.setPen(Qt.PenStyle.NoPen)  # runs of narrow clips: filled, not outlined (the
+        # outlines of hundreds of runs cost more than their fill)
+        fill.setAlpha(130)
+        painter.setBrush(QBrush(fill))
+        painter.drawRects([QRectF(a, top, b - a, h) for a, b in runs(x0[narrow], x1[narrow])])
+        painter.setPen(QPen(colour.darker(130), 1))
         painter.setBrush(QBrush(colour))
         middle = (x0[narrow] + x1[narrow]) / 2
         half = GRAB_PX / 2

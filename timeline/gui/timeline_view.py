@@ -30,6 +30,7 @@ from .timeline_scene import TimelineScene
 
 SNAP_PX = 8.0
 ZOOM_STEP = 1.25
+LABELS_PX = 200  # the scale labels at the left edge are within this width
 FIT_MARGIN_PX = 12  # room after the project's end when fitted, so the last edge can be grabbed
 
 CURSORS = {
@@ -149,7 +150,8 @@ class TimelineView(QGraphicsView):
 
     def drawForeground(self, painter: QPainter, rect) -> None:
         visible = self.mapToScene(self.viewport().rect()).boundingRect()
-        lane_scale.draw_labels(painter, self.lane_geometry, self.doc.project, visible)
+        if rect.left() <= visible.left() + LABELS_PX:  # a clip repainted elsewhere: no labels
+            lane_scale.draw_labels(painter, self.lane_geometry, self.doc.project, visible)
 
     def scrollContentsBy(self, dx: int, dy: int) -> None:
         super().scrollContentsBy(dx, dy)
