@@ -52,12 +52,22 @@ def _wait_until(qtbot, condition) -> None:  # noqa: ANN001
     qtbot.waitUntil(condition, timeout=10_000)
 
 
+def _fresh_counts(win):  # noqa: ANN001, ANN202
+    """The window's findings with the counts of its first (real) check cleared and a slow check
+    started."""
+    findings = win.findings
+    assert findings.settled and not findings.busy
+    findings.counts.clear()
+    findings.schedule()
+    return findings
+
+
 def test_a_slow_drag_leaves_no_stale_check_running(window, qtbot, monkeypatch, slow_checks):
     monkeypatch.setattr(findings_overlay, "DELAY_MS", 20)
     release, started = slow_checks
     win = window
-    findings = win.findings
-    _wait_until(qtbot, lambda: findings.counts["started"] >= 1)  # the first, after the paint
+    findings = _fresh_counts(win)
+    _wait_until(qtbot, lambda: findings.counts["started"] >= 1)
     vp = win.view.viewport()
     at = clip_point(win, win.ids["c1"])
     QTest.mousePress(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at)
@@ -80,7 +90,7 @@ def test_a_slow_drag_leaves_no_stale_check_running(window, qtbot, monkeypatch, s
 
 def test_queued_checks_are_dropped_not_run(window, qtbot, monkeypatch, slow_checks):
     release, started = slow_checks
-    findings = window.findings
+    findings = _fresh_counts(window)
     _wait_until(qtbot, lambda: findings.busy and findings.counts["started"] == 1)
     findings._start()  # a second check queued behind the first: the first is told to stop
     findings._start()  # a third: the second, still queued, is dropped without running
@@ -92,7 +102,7 @@ def test_queued_checks_are_dropped_not_run(window, qtbot, monkeypatch, slow_chec
 
 
 def test_closing_with_checks_queued_says_nothing(window, qtbot, slow_checks, capfd):
-    findings = window.findings
+    findings = _fresh_counts(window)
     capfd.readouterr()  # what opening the window printed (the offscreen platform's notes)
     _wait_until(qtbot, lambda: findings.counts["started"] == 1)
     findings._start()  # the running check is told to stop, a second queued

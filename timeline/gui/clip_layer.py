@@ -10,7 +10,6 @@ costs the same as a few clips; a lane showing fewer draws each clip's waveform, 
 
 from __future__ import annotations
 
-import bisect
 from collections.abc import Sequence
 
 import numpy as np
@@ -38,8 +37,8 @@ class LaneClips:
 
     def between(self, u0: float, u1: float) -> np.ndarray:
         """Indices of the clips that reach into [u0, u1] (axis units)."""
-        first = bisect.bisect_left(self.starts, u0 - self.longest)  # type: ignore[arg-type]
-        last = bisect.bisect_right(self.starts, u1)  # type: ignore[arg-type]
+        first = int(np.searchsorted(self.starts, u0 - self.longest, side="left"))
+        last = int(np.searchsorted(self.starts, u1, side="right"))
         found = np.arange(first, last)
         return found[self.ends[first:last] >= u0]
 
