@@ -49,7 +49,7 @@ def test_list_names_every_benchmark(capsys) -> None:
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
                      "estimator", "accumulation", "edit-to-feel", "scale", "convert",
                      "formats", "waves", "design-drag", "media", "compare",
-                     "convert-memory", "playback"]  # fmt: skip
+                     "convert-memory", "playback", "editor"]  # fmt: skip
 
 
 def test_each_benchmark_module_is_named_as_listed() -> None:

@@ -17,7 +17,7 @@ from timeline.plugins import discovery
 ORDER = (
     "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
     "accumulation", "edit-to-feel", "scale", "convert", "formats", "waves", "design-drag",
-    "media", "compare", "convert-memory", "playback",
+    "media", "compare", "convert-memory", "playback", "editor",
 )  # fmt: skip
 
 BUILT_IN = {
@@ -36,6 +36,7 @@ BUILT_IN = {
     "compare": "timeline.bench.compare_icons",
     "convert-memory": "timeline.bench.convert_memory",
     "playback": "timeline.bench.playback",
+    "editor": "timeline.bench.editor",
 }
 
 

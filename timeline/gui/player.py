@@ -26,14 +26,8 @@ from PySide6.QtCore import QEvent, QObject, QTimer, Signal
 
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
-from timeline.plugins.device_protocol import (
-    Device,
-    Hand,
-    Lateness,
-    LiveTelemetry,
-    device_names,
-    open_device,
-)
+from timeline.plugins import discovery
+from timeline.plugins.device_protocol import Device, Hand, Lateness, LiveTelemetry, open_device
 from timeline.rendering import playback
 from timeline.rendering.mixer import Mixer
 from timeline.rendering.sound_out import SoundOut
@@ -93,8 +87,10 @@ class Player(QObject):
 
     @staticmethod
     def devices() -> list[str]:
-        """Device plugins found through entry points."""
-        return device_names()
+        """Device plugins' names as their entry points register them, none loaded: the sim's
+        compiled loop (numba) is not imported before the window's first paint; a plugin that
+        cannot load says so when chosen (open_device)."""
+        return sorted(discovery.names(discovery.DEVICES))
 
     @property
     def playing(self) -> bool:

@@ -33,6 +33,7 @@ from .timeline_scene import TimelineScene
 
 SNAP_PX = 8.0
 ZOOM_STEP = 1.25
+LABELS_PX = 200  # the scale labels at the left edge are within this width
 FIT_MARGIN_PX = 12  # room after the project's end when fitted, so the last edge can be grabbed
 
 CURSORS = {
@@ -151,12 +152,16 @@ class TimelineView(QGraphicsView):
             bar.setValue(int(x - 0.1 * width))
 
     def drawBackground(self, painter: QPainter, rect) -> None:
+        painter.save()
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # level lines on pixels
         super().drawBackground(painter, rect)
         lane_scale.draw_grid(painter, self.lane_geometry, self.doc.project, rect)
+        painter.restore()
 
     def drawForeground(self, painter: QPainter, rect) -> None:
         visible = self.mapToScene(self.viewport().rect()).boundingRect()
-        lane_scale.draw_labels(painter, self.lane_geometry, self.doc.project, visible)
+        if rect.left() <= visible.left() + LABELS_PX:  # a clip repainted elsewhere: no labels
+            lane_scale.draw_labels(painter, self.lane_geometry, self.doc.project, visible)
 
     def scrollContentsBy(self, dx: int, dy: int) -> None:
         super().scrollContentsBy(dx, dy)
@@ -189,14 +194,9 @@ class TimelineView(QGraphicsView):
         self.readout.show()
 
     def item_at(self, pos: QPointF) -> ClipItem | None:
-        """The clip under a viewport point: where two clips touch, the one the pointer is over
-        (a clip's grab area reaches a little beyond its ends)."""
-        found = [item for item in self.items(pos.toPoint()) if isinstance(item, ClipItem)]
-        scene = self.mapToScene(pos.toPoint())
-        for item in found:
-            if 0.0 <= item.mapFromScene(scene).x() < item.width():
-                return item
-        return found[0] if found else None
+        """The clip under a viewport position (within a narrow clip's grab area; where two clips
+        touch, the one the pointer is over)."""
+        return self.scene().clip_at(self.mapToScene(pos.toPoint()))
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         if event.button() != Qt.MouseButton.LeftButton:

@@ -64,6 +64,9 @@ class Canvas(QWidget):
         self.selecting = False
         self.merge_key: object = None
         self.span = (-1.0, 1.0)
+        self._drawn: tuple[tuple[object, ...], QPolygonF, float] | None = None  # the curve
+        self._tile: Tile | None = None
+        self.shown: object = None  # what the last paint showed (refresh skips a repaint of it)
 
     # mapping between tile units and widget pixels
     def _duration(self) -> float:
@@ -110,18 +113,14 @@ class Canvas(QWidget):
                 QRectF(self.x_of(a), 0, self.x_of(b) - self.x_of(a), self.height()),
                 QColor(56, 117, 215, 45),
             )
-        data, rate = tile_samples(tile, self.editor.doc.project.rate)
-        peak = max(1.0, float(np.abs(data).max()))
+        count = max(2, self.width() - int(2 * MARGIN))
+        curve, peak = self._curve(tile, count)
         self.span = (-peak * 1.1, peak * 1.1)
         self._paint_scale(painter, peak)
-        count = max(2, self.width() - int(2 * MARGIN))
-        idx = np.linspace(0, len(data) - 1, count)
-        values = np.interp(idx, np.arange(len(data)), data)
-        xs = np.linspace(MARGIN, self.width() - MARGIN, count)
-        painter.setPen(QPen(QColor("#3a6ea5"), 1.5))
-        painter.drawPolyline(
-            QPolygonF([QPointF(x, self.y_of(v)) for x, v in zip(xs, values, strict=True)])
-        )
+        painter.setPen(QPen(QColor("#3a6ea5"), 1))
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # columns: no blending
+        painter.drawPolyline(curve)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
         points = self.editor.points() or ()
         if isinstance(tile, VibrationTile):
             self._paint_envelopes(painter, tile)
@@ -138,6 +137,26 @@ class Canvas(QWidget):
             QPointF(MARGIN + 2, 12),
             f"{tile.name} · {axis_text(tile.duration, self.editor.doc.project.axis)}",
         )
+
+    def _curve(self, tile: Tile, count: int) -> tuple[QPolygonF, float]:
+        """The tile's curve in widget pixels, decimated to `count` columns, and its peak;
+        made again only when the tile, the size or the project rate changed."""
+        rate = self.editor.doc.project.rate
+        key = (id(tile), count, self.height(), rate)  # the tile is held by _drawn's curve key
+        if self._drawn is None or self._drawn[0] != key:
+            data, _ = tile_samples(tile, rate)
+            peak = max(1.0, float(np.abs(data).max()))
+            self.span = (-peak * 1.1, peak * 1.1)
+            at, values = decimate(data, count)
+            xs = MARGIN + at / max(1, len(data) - 1) * (self.width() - 2 * MARGIN)
+            lo, hi = self.span
+            ys = MARGIN + (hi - values) / (hi - lo) * (self.height() - 2 * MARGIN)
+            curve = QPolygonF(
+                [QPointF(x, y) for x, y in zip(xs.tolist(), ys.tolist(), strict=True)]
+            )
+            self._drawn = (key, curve, peak)
+            self._tile = tile  # keeps id(tile) from being reused while the key holds it
+        return self._drawn[1], self._drawn[2]
 
     def _paint_envelopes(self, painter: QPainter, tile: VibrationTile) -> None:
         """A design's envelopes over its carrier: the edited one bold, the other faint; in the
@@ -263,6 +282,23 @@ class Canvas(QWidget):
             event.accept()
             return
         super().keyPressEvent(event)
+
+
+def decimate(data: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """A polyline through `data` with at most 2 points per column of `count`: each column's
+    highest then lowest sample (sample positions, values), so no peak is lost; fewer samples
+    than 2 per column are returned as they are."""
+    n = len(data)
+    if n <= 2 * count:
+        return np.arange(n, dtype=np.float64), np.asarray(data, dtype=np.float64)
+    starts = (np.arange(count) * n) // count
+    hi = np.maximum.reduceat(data, starts)
+    lo = np.minimum.reduceat(data, starts)
+    middle = starts + (np.r_[starts[1:], n] - starts) / 2
+    at = np.repeat(middle, 2)
+    values = np.empty(2 * count)
+    values[0::2], values[1::2] = hi, lo
+    return at, values
 
 
 def nice_level(peak: float) -> float:
@@ -424,7 +460,27 @@ class WaveformEditor(QWidget):
                 box.blockSignals(True)
                 box.setValue(value)
                 box.blockSignals(False)
-        self.canvas.update()
+        shown = self._shown_key()
+        if shown != self.canvas.shown:  # a clip dragged elsewhere changes nothing here
+            self.canvas.shown = shown
+            self.canvas.update()
+
+    def _shown_key(self) -> tuple[object, ...]:
+        """Everything the canvas draws depends on (the tile, points, range, track's scale)."""
+        track = self.track()
+        scale = None if track is None else (track.id, track.kind, track.full_scale, track.name)
+        project = self.doc.project
+        tile = self.tile  # by identity: a tile's arrays do not compare with ==
+        return (
+            id(tile),
+            tile,
+            self.point,
+            self.range,
+            self.lane,
+            scale,
+            project.axis,
+            project.rate,
+        )
 
     def select_point(self, index: int | None) -> None:
         self.point = index
