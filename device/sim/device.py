@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import replace
 from typing import Any
 
 from device.sim.params import KnobParams
@@ -12,6 +13,7 @@ from timeline.plugins.device_protocol import (
     Device,
     DeviceInfo,
     Hand,
+    LatenessMeter,
     LiveTelemetry,
     Monitor,
     PositionProgram,
@@ -51,6 +53,10 @@ class SimKnob(Device):
             f"{p.quantum * 180 / 3.141592653589793:g} deg encoder (always available)"
         ]
 
+    def warm_up(self) -> None:
+        """Load the compiled servo loop (from numba's cache) on a knob of its own."""
+        KnobPhysics(self.params).run_block(CoefficientBlock.zeros(1))
+
     def play(
         self,
         program: Iterable[CoefficientBlock] | PositionProgram,
@@ -85,4 +91,6 @@ class SimKnob(Device):
                     break
         if not parts:
             parts.append(self.physics.run_block(CoefficientBlock.zeros(0)))
-        return Telemetry.concatenate(parts)
+        tel = Telemetry.concatenate(parts)
+        meter = getattr(program, "lateness", None)  # a paced stream counts its late blocks
+        return replace(tel, lateness=meter.counts()) if isinstance(meter, LatenessMeter) else tel

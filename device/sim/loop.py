@@ -51,9 +51,11 @@ def servo_loop(
     hand: tuple[float, float, float, float],
     state: State,
     observer: tuple[float, ...],
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, State]:
+    loss: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int, State]:
     """Run len(gain) servo periods; return the true angle before each period, the motor torque,
-    the Coulomb friction torque, the count of NaN torques replaced by 0, and the new state.
+    the Coulomb friction torque, the energy the rotor's viscous damping dissipated in each
+    period, the count of NaN torques replaced by 0, and the new state.
 
     coeffs: rows d, k, b, m, one value per period (time projects; m is read only with use_mass);
     tables: rows T, B, M over angle (position projects; no columns in time projects), looked up
@@ -63,7 +65,9 @@ def servo_loop(
     row then the omega row of the map over z = [theta, omega, u, r, v];
     hand: push torque, push ramp, turning speed, seconds since the play started; observer: on
     (1.0: it estimates the acceleration instead of the filter) or off (0.0), then the
-    kinematic model's 3x3 matrix A by rows and the gains L (observer.py).
+    kinematic model's 3x3 matrix A by rows and the gains L (observer.py); loss: the 5x5 matrix
+    W with z^T W z the viscous loss over a period from z = [theta, omega, u, r, v]
+    (plant.viscous_loss: the exact integral of b_dev*omega(t)^2 over the held period).
     """
     rate, period, quantum, tmax, coulomb, av, aa, delay, slew = firmware
     t0, t1, t2, t3, t4, w0, w1, w2, w3, w4 = plant
@@ -81,6 +85,7 @@ def servo_loop(
     thetas = np.empty(n)
     taus = np.empty(n)
     frictions = np.zeros(n)
+    losses = np.empty(n)
     nonfinite = 0
     d = k = b = m = 0.0
     for i in range(n):
@@ -142,6 +147,14 @@ def servo_loop(
             frictions[i] = fr
         thetas[i] = theta
         taus[i] = tau
+        z = (theta, omega, u, r, speed)
+        lost = 0.0
+        for a in range(5):
+            row = 0.0
+            for c in range(5):
+                row += loss[a, c] * z[c]
+            lost += z[a] * row
+        losses[i] = lost
         theta = t0 * theta + t1 * omega + t2 * u + t3 * r + t4 * speed
         omega = free
         r += speed * period
@@ -149,6 +162,7 @@ def servo_loop(
         thetas,
         taus,
         frictions,
+        losses,
         nonfinite,
         (
             theta,

@@ -20,9 +20,10 @@ import numpy as np
 from device.sim.loop import State, servo_loop
 from device.sim.observer import OFF, observer_tuple
 from device.sim.params import KnobParams
-from device.sim.plant import step_matrix, system_matrix
+from device.sim.plant import step_matrix, system_matrix, viscous_loss
 from device.sim.readings import blow_up_index, readings
 from device.sim.stability import stability_flags
+from timeline.limits.servo import load_of
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
     DeviceError,
@@ -49,7 +50,7 @@ class KnobPhysics:
         self.substeps = substeps
         self.theta = 0.0  # true absolute angle (rad)
         self.omega = 0.0  # true speed (rad/s)
-        self._maps: dict[tuple[float, ...], tuple[float, ...]] = {}
+        self._maps: dict[tuple[float, ...], tuple[tuple[float, ...], np.ndarray]] = {}
         self._tables: tuple[PositionTable | None, np.ndarray] = (None, NO_TABLES)
         self.start(Hand("hold"))
 
@@ -70,7 +71,8 @@ class KnobPhysics:
 
     # --- set-up ---------------------------------------------------------------------------
 
-    def _step_map(self, hand: Hand) -> tuple[float, ...]:
+    def _step_map(self, hand: Hand) -> tuple[tuple[float, ...], np.ndarray]:
+        """The plant's theta and omega rows over a period, and the viscous loss's matrix W."""
         p = self.params
         inertia = p.inertia + (hand.inertia if hand.touches else 0.0)
         grip_k, grip_b = (hand.grip_stiffness, hand.grip_damping) if hand.grips else (0.0, 0.0)
@@ -78,7 +80,8 @@ class KnobPhysics:
         if key not in self._maps:
             a = system_matrix(inertia, p.viscous, grip_k, grip_b)
             m = step_matrix(a, p.period, self.integrator, self.substeps)
-            self._maps[key] = tuple(float(x) for x in m[:2].ravel())
+            rows = tuple(float(x) for x in m[:2].ravel())
+            self._maps[key] = (rows, viscous_loss(a, p.period, p.viscous))
         return self._maps[key]
 
     def _quantise(self, angle: float) -> float:
@@ -88,7 +91,8 @@ class KnobPhysics:
     def start(self, hand: Hand | None = None) -> None:
         """Begin a play: the current angle becomes the anchor (theta = 0); estimators reset."""
         self.hand = hand or Hand("hold")
-        self._map = self._step_map(self.hand)
+        self._map, self._loss = self._step_map(self.hand)
+        self._loads = (load_of(self.hand),)  # the whole loop's stability is judged with it
         self.anchor = self._quantise(self.theta)
         self.grip_target = self.theta
         self.samples = 0  # samples since start
@@ -127,7 +131,7 @@ class KnobPhysics:
         layers = dict(zip("dkbm", coeffs[:, :n], strict=False))
         p = self.params
         k, b, m = layers["k"], layers["b"], layers.get("m")
-        flags = stability_flags(tel.time, k, b, m, p.dynamics, p.period)
+        flags = stability_flags(tel.time, k, b, m, p.dynamics, p.period, self._loads)
         if refused is not None:
             flags.append(refused)
             tel = replace(tel, warnings=(*tel.warnings, refused.message))
@@ -186,7 +190,9 @@ class KnobPhysics:
             layers["m"] = mass
         stiffness = local_stiffness(table, where)
         p = self.params
-        flags = stability_flags(tel.time, stiffness, damping, mass, p.dynamics, p.period)
+        flags = stability_flags(
+            tel.time, stiffness, damping, mass, p.dynamics, p.period, self._loads
+        )
         return _with(tel, layers, flags)
 
     def _run(
@@ -211,7 +217,7 @@ class KnobPhysics:
                         self.vel, self.prev_vel, self.acc, self.pending,
                         *self.observed)  # fmt: skip
         gain = np.ones(n) if gain is None else gain
-        thetas, taus, frictions, nonfinite, state = servo_loop(
+        thetas, taus, frictions, losses, nonfinite, state = servo_loop(
             coeffs,
             tables,
             gain,
@@ -222,21 +228,24 @@ class KnobPhysics:
             motion,
             state,
             self._observer,
+            self._loss,
         )
-        return self._finish(thetas, taus, frictions, state, nonfinite)
+        return self._finish(thetas, taus, frictions, losses, state, nonfinite)
 
     def _finish(
         self,
         thetas: np.ndarray,
         taus: np.ndarray,
         frictions: np.ndarray,
+        losses: np.ndarray,
         state: State,
         nonfinite: int,
     ) -> Telemetry:
         """Turn the loop's record (true angle before each period, torque) into telemetry.
 
         Energy is what the device (motor with its own viscous and Coulomb friction, Colgate's
-        "device") put into the rotor and hand: motor work minus the friction's dissipation.
+        "device") put into the rotor and hand: motor work minus the friction's dissipation (the
+        viscous part integrated exactly over each held period, plant.viscous_loss).
         """
         p = self.params
         theta, omega, grip_target, _, *estimators = state
@@ -253,6 +262,7 @@ class KnobPhysics:
             warnings.append(self.failed)
             theta, omega = float(thetas[done]), 0.0
             thetas, taus, frictions = thetas[:done], taus[:done], frictions[:done]
+            losses = losses[:done]
         if nonfinite:
             warnings.append(f"{nonfinite} non-finite torque samples were replaced by zero")
         meas, velocity, energy = readings(
@@ -260,9 +270,10 @@ class KnobPhysics:
             theta,
             taus,
             frictions,
+            losses,
             _floats(p.quantum, self.anchor, p.rate),
             _floats(self._firmware[5], self.prev_meas, self.vel),
-            _floats(p.viscous, self.energy),
+            self.energy,
         )
         self.theta, self.omega, self.grip_target = theta, omega, grip_target
         self.prev_meas, self.vel, self.prev_vel, self.acc, self.pending, *observed = estimators

@@ -50,3 +50,18 @@ def step_matrix(a: np.ndarray, h: float, integrator: str = "zoh", substeps: int 
         one = eye + s * a
         one[0] = eye[0] + s * one[1]
     return np.linalg.matrix_power(one, substeps)
+
+
+def viscous_loss(a: np.ndarray, h: float, damping: float) -> np.ndarray:
+    """W with damping * z^T W z = the integral of damping*omega(t)^2 over one held period from z
+    (the exact flow z(t) = exp(A t) z): W = integral of exp(A^T t) e1 e1^T exp(A t) dt, by Van
+    Loan's block exponential (expm([[-A^T, Q], [0, A]] h) = [[., F12], [0, F22]], W = F22^T F12).
+    """
+    n = a.shape[0]
+    q = np.zeros((n, n))
+    q[1, 1] = 1.0
+    block = np.zeros((2 * n, 2 * n))
+    block[:n, :n], block[:n, n:], block[n:, n:] = -a.T, q, a
+    f = expm(block * h)
+    w = f[n:, n:].T @ f[:n, n:]
+    return damping * 0.5 * (w + w.T)

@@ -5,7 +5,8 @@ where the simulation blew up (the first period after which the angle is not fini
 faster than a limit), the encoder reading relative to the anchor, the firmware's filtered
 velocity (backward difference through the first-order low-pass, in scipy.signal.lfilter's
 direct form II transposed, so the numbers equal that filter's) and the cumulative energy the
-device put in (motor work minus its viscous and Coulomb dissipation). One call per block
+device put in (motor work minus its viscous dissipation, integrated exactly by the servo loop,
+and its Coulomb friction's). One call per block
 instead of a dozen numpy calls: at 1,000 samples a block their per-call overhead cost more
 than the servo loop itself.
 """
@@ -37,19 +38,20 @@ def readings(
     theta_end: float,
     taus: np.ndarray,
     frictions: np.ndarray,
+    losses: np.ndarray,
     encoder: tuple[float, float, float],
     velocity: tuple[float, float, float],
-    device: tuple[float, float],
+    energy0: float,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The reading, filtered velocity and cumulative energy after each period.
 
+    losses: the viscous dissipation in each period (the servo loop integrates it exactly);
     encoder: quantum (0 = ideal), anchor, rate; velocity: the low-pass gain av, the reading
-    and the velocity estimate before the first period; device: viscous damping and the energy
-    before the first period.
+    and the velocity estimate before the first period; energy0: the energy before the first
+    period.
     """
     quantum, anchor, rate = encoder
     av, prev_meas, vel = velocity
-    viscous, energy0 = device
     n = thetas.size
     meas = np.empty(n)
     vels = np.empty(n)
@@ -67,7 +69,7 @@ def readings(
         prev_meas = reading
         after = thetas[i + 1] if i + 1 < n else theta_end
         step = after - theta
-        dissipated = viscous * step * step * rate - frictions[i] * step
+        dissipated = losses[i] - frictions[i] * step
         work = taus[i] * step - dissipated
         total = work if i == 0 else total + work  # numpy's cumsum: no 0.0 + first term
         meas[i] = reading

@@ -27,6 +27,7 @@ from timeline.plugins.device_protocol import (
 )
 
 EMULATE_ENV = "HAPTIC_TIMELINE_USB_EMULATE"
+REALTIME = "realtime"  # the value of EMULATE_ENV that runs the emulated firmware on the wall clock
 
 
 def _shown(x: float) -> float:
@@ -39,7 +40,9 @@ class UsbKnob(Device):
 
     `backend` is a pyusb backend (default: libusb from libusb-package, else pyusb's choice);
     `emulate=True` (or the environment variable HAPTIC_TIMELINE_USB_EMULATE=1) plugs in the
-    emulated device instead, so everything works without hardware.
+    emulated device instead, so everything works without hardware; `realtime=True` (or
+    HAPTIC_TIMELINE_USB_EMULATE=realtime) runs its firmware on the wall clock, so a late host
+    underruns it as it would a real knob (otherwise it plays as fast as the host streams).
     `lead` and `block` are the seconds streamed ahead of the device and per transfer;
     `max_torque` (N*m) lowers the device's own limit.
     """
@@ -56,9 +59,11 @@ class UsbKnob(Device):
         timeout_ms: int = 1000,
         watchdog_ms: int = 50,
         max_torque: float | None = None,
+        realtime: bool | None = None,
     ) -> None:
         if backend is None and (_emulating() if emulate is None else emulate):
-            backend = _emulated_backend(vid, pid)
+            realtime = os.environ.get(EMULATE_ENV, "") == REALTIME if realtime is None else realtime
+            backend = _emulated_backend(vid, pid, realtime)
         self.vid, self.pid, self.serial = int(vid), int(pid), serial
         self.backend = backend
         self.lead, self.block = float(lead), float(block)
@@ -84,6 +89,11 @@ class UsbKnob(Device):
         if self.link is None:
             backend = self.backend if self.backend is not None else default_backend()
             self.link = Link.open(self.vid, self.pid, backend, self.serial, self.timeout_ms)
+
+    def warm_up(self) -> None:
+        """An emulated device loads its compiled servo loop; hardware needs nothing."""
+        if hasattr(self.backend, "warm_up"):
+            self.backend.warm_up()
 
     def close(self) -> None:
         if self.link is not None:
@@ -141,6 +151,8 @@ class UsbKnob(Device):
             link.abort()
             raise
         tel = stream.telemetry()
+        if getattr(link.dev.backend, "realtime", True):  # an emulated device may not be
+            tel = replace(tel, lateness=stream.lateness.counts())
         if chunker.dropped:
             names = ", ".join(sorted(chunker.dropped))
             tel = _warn(tel, f"the device does not render the {names} layers; they were not sent")
@@ -162,11 +174,11 @@ def _emulating() -> bool:
     return os.environ.get(EMULATE_ENV, "") not in ("", "0")
 
 
-def _emulated_backend(vid: int, pid: int) -> Any:
+def _emulated_backend(vid: int, pid: int, realtime: bool = False) -> Any:
     from device.usb.descriptors import Identity
     from device.usb.emulated import EmulatedBackend, EmulatedDevice
 
-    return EmulatedBackend(EmulatedDevice(identity=Identity(vid=vid, pid=pid)))
+    return EmulatedBackend(EmulatedDevice(identity=Identity(vid=vid, pid=pid), realtime=realtime))
 
 
 def _warn(tel: Telemetry, message: str) -> Telemetry:

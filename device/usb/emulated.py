@@ -4,12 +4,22 @@ pyusb's own code (descriptor parsing, configuration, claiming, transfers) runs u
 of it: `usb.core.find(backend=EmulatedBackend(EmulatedDevice()), ...)`. Behind the endpoints the
 firmware (device.usb.firmware) runs the `sim` knob's physics. Fault injection (FaultPlan) makes
 a transfer time out, an endpoint stall, the device vanish, or the host late enough to underrun.
+
+Time on the device passes in one of two ways. By default it follows the host: each telemetry
+read plays one report's worth of samples, so a stream runs as fast as the host can go (what most
+tests want: deterministic, no waiting). With `realtime=True` the firmware's clock is the wall
+clock (time.monotonic): before every request the device plays the samples that came due, a
+telemetry read waits until a report's worth has played, and a host that hands a block over
+after the queue ran dry finds the underrun counted and, past the watchdog, the torque ramped to
+zero, as on hardware.
 """
 
 from __future__ import annotations
 
 import array
 import errno
+import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -17,10 +27,11 @@ import usb.backend
 import usb.core
 import usb.util
 
+from device.sim import KnobPhysics
 from device.usb import descriptors as desc
 from device.usb import protocol as p
 from device.usb.firmware import EmulatedKnob
-from timeline.plugins.device_protocol import Hand
+from timeline.plugins.device_protocol import CoefficientBlock, Hand
 
 _GET_DESCRIPTOR = 0x06
 _NO_DEVICE = ("No such device (it may have been disconnected)", -4, errno.ENODEV)
@@ -52,8 +63,32 @@ class FaultPlan:
     lie_at: tuple[int, float] | None = None
 
 
+class WallClock:
+    """The firmware's clock in real time: how many servo periods came due since the last look."""
+
+    def __init__(self, rate: float, clock: Callable[[], float] = time.monotonic) -> None:
+        self.rate, self.clock = rate, clock
+        self.restart()
+
+    def restart(self) -> None:
+        """Count from now (time that passes while nothing plays is not owed)."""
+        self.anchor, self.ticks = self.clock(), 0
+
+    def due(self) -> int:
+        """Periods that have come due and are not played yet."""
+        return int((self.clock() - self.anchor) * self.rate) - self.ticks
+
+    def took(self, n: int) -> None:
+        """n periods were played (or skipped)."""
+        self.ticks += n
+
+
 class EmulatedDevice:
-    """One device on the emulated bus: its firmware, identity, faults and transport state."""
+    """One device on the emulated bus: its firmware, identity, faults and transport state.
+
+    `realtime`: the firmware runs on the wall clock (see the module's docstring); `clock` and
+    `sleep` are that clock and how to wait on it (a test may pass a virtual one).
+    """
 
     def __init__(
         self,
@@ -61,8 +96,13 @@ class EmulatedDevice:
         identity: desc.Identity | None = None,
         faults: FaultPlan | None = None,
         record: bool = False,
+        realtime: bool = False,
+        clock: Callable[[], float] = time.monotonic,
+        sleep: Callable[[float], None] = time.sleep,
     ) -> None:
         self.knob = knob or EmulatedKnob()
+        self.clock = WallClock(self.knob.info.rate_hz, clock) if realtime else None
+        self.sleep = sleep
         self.identity = identity or desc.Identity()
         self.faults = faults or FaultPlan()
         self.record = record
@@ -77,6 +117,38 @@ class EmulatedDevice:
     def check_present(self) -> None:
         if self.unplugged:
             raise usb.core.USBError(*_NO_DEVICE)
+        self.catch_up()
+
+    def catch_up(self) -> None:
+        """Real time: play the periods that came due since the last request.
+
+        Before a stream's first block and while idle nothing is owed: an idle device reports
+        at most one report's worth of the time that went by.
+        """
+        clock, knob = self.clock, self.knob
+        if clock is None:
+            return
+        if knob.waiting:
+            clock.restart()
+            return
+        n = clock.due()
+        if knob.state == p.STATE_IDLE and n > knob.info.report_samples:
+            clock.took(n - knob.info.report_samples)
+            n = knob.info.report_samples
+        if n > 0:
+            knob.advance_samples(n)
+            clock.took(n)
+
+    def telemetry_report(self) -> bytes:
+        """The next report: after one report's worth of samples played (waiting for them in
+        real time)."""
+        if self.clock is None:
+            return self.knob.send()
+        need = self.knob.info.report_samples
+        while self.knob.unreported < need and not self.knob.waiting:
+            self.sleep((need - self.knob.unreported) / self.clock.rate)
+            self.catch_up()
+        return self.knob.report()
 
     def next_transfer(self, ep: int) -> int:
         """Count a bulk transfer and raise the fault planned for it, if any."""
@@ -118,6 +190,19 @@ class EmulatedBackend(usb.backend.IBackend):
     def __init__(self, *devices: EmulatedDevice) -> None:
         super().__init__()
         self.devices = list(devices)
+
+    def warm_up(self) -> None:
+        """Load the firmware's compiled servo loop, so the wall clock does not run on while it
+        loads during the first block."""
+        for dev in self.devices:
+            physics = KnobPhysics(dev.knob.physics.params)
+            physics.run_block(CoefficientBlock.zeros(1))
+            physics.run_idle(1)
+
+    @property
+    def realtime(self) -> bool:
+        """True when the devices run on the wall clock (their lateness is real)."""
+        return any(dev.clock is not None for dev in self.devices)
 
     def set_hand(self, hand: Hand) -> None:
         """What the (emulated) user's hand does from the next START on."""
@@ -205,7 +290,7 @@ class EmulatedBackend(usb.backend.IBackend):
             raise usb.core.USBError(*_PIPE)
         if i == dev_handle.faults.late_at:
             dev_handle.knob.starve()
-        payload = _damaged(dev_handle.knob.send(), i, dev_handle.faults)
+        payload = _damaged(dev_handle.telemetry_report(), i, dev_handle.faults)
         if len(payload) > len(buff) * buff.itemsize:
             raise usb.core.USBError(*_OVERFLOW)
         buff[: len(payload)] = array.array("B", payload)

@@ -2,8 +2,9 @@
 
 `EmulatedKnob` keeps the queue, counters, flags, watchdog and ramp as docs/usb-protocol.md
 states and renders every sample with the `sim` knob's physics (device.sim.KnobPhysics). It has
-no wall clock: time passes when the host reads a telemetry report (one report's worth of
-samples) or when `advance()` is called (time passing with no host).
+no clock of its own: time passes when the host reads a telemetry report (`send`: one report's
+worth of samples) or when `advance()` is called (time passing with no host); the emulated
+device's wall-clock mode (device.usb.emulated) calls `advance_samples` as the wall clock goes.
 """
 
 from __future__ import annotations
@@ -182,6 +183,20 @@ class EmulatedKnob:
     def send(self) -> bytes:
         """One IN transfer: play one report's worth of samples, then report the oldest ones."""
         self.advance_samples(self.info.report_samples)
+        return self.report()
+
+    @property
+    def unreported(self) -> int:
+        """Samples played and not reported yet."""
+        return sum(map(len, self._unreported))
+
+    @property
+    def waiting(self) -> bool:
+        """Started, and no sample queued or played yet: the stream begins with the first block."""
+        return self.state == p.STATE_RUNNING and not self.played and not self._queued
+
+    def report(self) -> bytes:
+        """The next telemetry report: up to one report's worth of the oldest unreported samples."""
         rows = np.concatenate(self._unreported) if self._unreported else np.zeros((0, 3))
         n = min(self.info.report_samples, len(rows))
         self._unreported.clear()

@@ -1,11 +1,15 @@
 """Streaming a program to an open device: re-blocking, safety, pacing and telemetry.
 
 The host keeps the device's queue at most `lead` samples ahead of what it has played, as the
-device reports it (docs/usb-protocol.md, section 4), and checks every telemetry report.
+device reports it (docs/usb-protocol.md, section 4), and checks every telemetry report. It
+counts the blocks it writes later than the lead on the wall clock (the device plays from the
+first block on, one sample per period): each would have reached a real knob after its queue ran
+dry.
 """
 
 from __future__ import annotations
 
+import time
 from collections import deque
 from collections.abc import Iterable, Iterator
 
@@ -17,6 +21,7 @@ from device.usb.errors import DeviceFault, DeviceUnderrun, UsbDeviceError
 from device.usb.link import Link
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
+    LatenessMeter,
     LiveTelemetry,
     Monitor,
     Progress,
@@ -99,6 +104,8 @@ class Stream:
             )
         self.zeroed = 0
         self.clamped = 0
+        self.lateness = LatenessMeter(self.lead_n / self.rate)
+        self._first_write: float | None = None  # perf_counter of the first block written
         self._sent: list[np.ndarray] = []
         self._received: list[np.ndarray] = []
         self._n_sent = 0
@@ -112,14 +119,17 @@ class Stream:
         monitor: Monitor | None = None,
     ) -> None:
         """Stream everything the chunker yields and read telemetry until all of it is played."""
-        if not chunker.available(1):
+        if not chunker.available(self.lead_n):
             return  # an empty program: nothing to play
+        # The lead is read ahead: the device plays from the first block on, so the blocks that
+        # fill its queue go out back to back, not one per pull from a live stream.
         seq, fill, since, end = 0, 0, 0, False
         self.link.start(self.mask)
         while not end or self._n_received < self._n_sent:
             while not end and fill + since + self.block_n <= self.lead_n:
                 n = p.block_samples(chunker.available(self.block_n), self.mask, self.block_n)
                 rows, end = chunker.take(n)
+                self._count_lateness()
                 self.link.write_block(p.Block(seq, self.mask, self._safe(rows), end))
                 seq += 1
                 since += len(rows)
@@ -133,6 +143,13 @@ class Stream:
             fill, since = report.buffer_fill, 0
             if progress:
                 progress(min(self._n_received, self._n_sent) / self.rate, total)
+
+    def _count_lateness(self) -> None:
+        """The block about to go out plays from sample _n_sent, one period each from the first."""
+        now = time.perf_counter()
+        if self._first_write is None:
+            self._first_write = now
+        self.lateness.handed(self._first_write + self._n_sent / self.rate, now)
 
     def _safe(self, rows: np.ndarray) -> np.ndarray:
         safe, zeroed, clamped = p.make_safe(rows, self.limits)

@@ -14,7 +14,9 @@ TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:
           "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency",
           "Scale: full render", "Scale: building through edits", "Scale: project save",
           "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:",
-          "Square, saw and triangle waves", "Drag a design with its emphasis")  # fmt: skip
+          "Square, saw and triangle waves", "Drag a design with its emphasis",
+          "A 1-minute float32 recording", "compare: wall s",
+          "convert of a 16-bit mono WAV")  # fmt: skip
 
 
 def test_quick_bench_prints_tables_and_writes_plots(tmp_path: Path) -> None:
@@ -46,7 +48,8 @@ def test_list_names_every_benchmark(capsys) -> None:
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
                      "estimator", "accumulation", "edit-to-feel", "scale", "convert",
-                     "formats", "waves", "design-drag"]  # fmt: skip
+                     "formats", "waves", "design-drag", "media", "compare",
+                     "convert-memory", "playback", "editor"]  # fmt: skip
 
 
 def test_each_benchmark_module_is_named_as_listed() -> None:

@@ -1,6 +1,7 @@
 """Hypothesis: random edit sequences undo back to the start; save/load round-trips exactly."""
 
 import contextlib
+from dataclasses import replace
 
 import numpy as np
 from hypothesis import HealthCheck, given, settings
@@ -105,11 +106,22 @@ def test_undo_back_to_the_start_restores_the_project(steps):
             continue  # refused: nothing changed
         history.do(op[0], p)
         states.append(p)
+    saved = {v.name for p in states for v in p.variants}  # no OPS deletes a variant
     for expected in reversed(states[:-1]):
-        assert history.undo() == expected
-    assert history.project == start and not history.modified
+        assert_design(history.undo(), expected, saved)
+    assert_design(history.project, start, saved)
+    assert history.modified == bool(saved)  # the saved file lacks the variants carried back
     for expected in states[1:]:
-        assert history.redo() == expected
+        assert_design(history.redo(), expected, saved)
+
+
+def assert_design(got, expected, saved: set[str]) -> None:
+    """The state undo or redo arrived at is `expected`, with every variant saved on the way
+    (variants outlive undo: only their own deletion removes them)."""
+    assert replace(got, variants=expected.variants) == expected
+    assert {v.name for v in got.variants} == saved
+    for variant in expected.variants:
+        assert got.variant(variant.name) == variant
 
 
 @settings(max_examples=40, deadline=None)

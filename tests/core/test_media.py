@@ -4,6 +4,7 @@ inflated into the array the tile keeps, and damaged or lying entries refused in 
 from __future__ import annotations
 
 import base64
+import json
 import zlib
 
 import numpy as np
@@ -73,8 +74,7 @@ def test_a_project_with_a_lying_entry_is_refused_and_left_alone(tmp_path):
     path = tmp_path / "p.htl"
     project, _ = edits.add_tile(edits.new_project(), audio_tile(tmp_path))
     projectfile.save(project, path)
-    text = path.read_text()
-    path.write_text(text.replace('"count": 3000', '"count": 3001'))
+    path.write_bytes(path.read_bytes().replace(b'"count": 3000', b'"count": 3001'))
     before = path.read_bytes()
     with pytest.raises(ProjectFileError, match="holds 3000 samples but declares 3001"):
         projectfile.load(path)
@@ -87,18 +87,29 @@ def audio_tile(tmp_path):
     return audio.FORMAT.read(wav)
 
 
-def test_a_streamed_save_writes_the_bytes_of_dumps(tmp_path, monkeypatch):
-    monkeypatch.setattr(media, "BLOCK_SAMPLES", 1000)  # several blocks and base64 carries
-    monkeypatch.setattr(media, "SMALL_BYTES", 100)  # the large-media level
-    project = edits.new_project(title="\0samples-0-0, a title like the writer's placeholders")
+def test_a_save_writes_the_json_of_dumps_then_each_recording_once_raw(tmp_path):
+    project = edits.new_project(title="=== binary appendix: a title like the separator ===")
+    arrays = []
     for n, dtype in ((3001, np.float32), (2500, np.float64), (3001, np.float32)):
         data = np.random.default_rng(n).standard_normal(n).astype(dtype)
         data.setflags(write=False)
+        arrays.append(data)
         project, _ = edits.add_tile(project, SampledTile(data, 1000.0, f"r{n}"))
     path = tmp_path / "p.htl"
     projectfile.save(project, path)
-    assert path.read_bytes() == projectfile.dumps(project).encode("utf-8")
-    assert path.read_text().count('"encoding"') == 2  # the third tile shares the first's samples
+    saved = path.read_bytes()
+    text, appendix = saved.split(b"\n" + media.SEPARATOR)
+    assert appendix == arrays[0].tobytes() + arrays[1].tobytes()  # the third shares the first's
+    doc, dumped = json.loads(text), json.loads(projectfile.dumps(project))
+    assert doc["appendix"] == {"bytes": len(appendix)}
+    assert [e["encoding"] for e in doc["media"].values()] == ["appendix", "appendix"]
+    assert [e["encoding"] for e in dumped["media"].values()] == ["zlib+base64"] * 2
+    assert {k: v for k, v in doc.items() if k not in ("media", "appendix")} == {
+        k: v for k, v in dumped.items() if k != "media"
+    }
     loaded = projectfile.load(path)
     for tile_id, tile in project.tiles.items():
         assert loaded.tile(tile_id) == tile
+        if isinstance(tile, SampledTile):
+            assert loaded.tile(tile_id).data.tobytes() == tile.data.tobytes()
+    assert projectfile.loads(saved) == loaded == projectfile.loads(projectfile.dumps(project))

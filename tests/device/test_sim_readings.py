@@ -13,15 +13,16 @@ from device.sim.readings import blow_up_index, readings
 ANGLES = arrays(np.float64, st.integers(1, 60), elements=st.floats(-1e3, 1e3))
 
 
-def reference(thetas, end, taus, frictions, quantum, anchor, rate, av, prev_meas, vel, viscous,
+def reference(thetas, end, taus, frictions, losses, quantum, anchor, rate, av, prev_meas, vel,
               energy0):  # fmt: skip
-    """What physics.py computed with numpy and lfilter before the compiled pass."""
+    """What physics.py computed with numpy and lfilter before the compiled pass (the viscous
+    loss per period now comes from the servo loop)."""
     path = np.append(thetas, end)
     meas = (np.floor(thetas * (1.0 / quantum) + 0.5) * quantum if quantum else thetas) - anchor
     raw = np.diff(meas, prepend=prev_meas) * rate
     velocity = lfilter([av], [1.0, av - 1.0], raw, zi=[(1.0 - av) * vel])[0]
     step = np.diff(path)
-    dissipated = viscous * step * step * rate - frictions * step
+    dissipated = losses - frictions * step
     return meas, velocity, energy0 + np.cumsum(taus * step - dissipated)
 
 
@@ -38,10 +39,11 @@ def reference(thetas, end, taus, frictions, quantum, anchor, rate, av, prev_meas
 def test_readings_equal_the_numpy_formulas(thetas, end, quantum, av, prev, vel, energy0) -> None:
     rng = np.random.default_rng(thetas.size)
     taus, frictions = rng.normal(0, 0.1, thetas.size), rng.normal(0, 1e-3, thetas.size)
+    losses = rng.uniform(0, 1e-6, thetas.size)
     args = (0.25, 10_000.0)
-    got = readings(thetas, end, taus, frictions, (quantum, *args), (av, prev, vel),
-                   (1e-4, energy0))  # fmt: skip
-    want = reference(thetas, end, taus, frictions, quantum, *args, av, prev, vel, 1e-4, energy0)
+    got = readings(thetas, end, taus, frictions, losses, (quantum, *args), (av, prev, vel),
+                   energy0)  # fmt: skip
+    want = reference(thetas, end, taus, frictions, losses, quantum, *args, av, prev, vel, energy0)
     for a, b in zip(got, want, strict=True):
         assert a.tobytes() == b.tobytes()
 

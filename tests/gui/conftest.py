@@ -78,6 +78,9 @@ def window(qtbot):
     win.view.snapping = False
     win.view.refresh()
     win.ids = ids
+    # the first limits check starts after the first paint; its line in the message bar comes
+    # before the test's own messages, as when it started with the window
+    qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
     yield win
     win.player.close()
     win.autosaver.discard()

@@ -102,3 +102,17 @@ def test_a_check_that_could_not_run_is_said_with_no_findings() -> None:
         f"No device or perception limit crossed; but {usb} not checked "
         "(stiffness and saturation are) (+1 more)"
     )
+
+
+def test_hovering_the_shading_names_the_finding_and_elsewhere_the_clip(stiff_window) -> None:
+    win = stiff_window
+    scene = win.view.scene()
+    rect = win.findings.shades[0].rect()
+    inside = rect.center()
+    assert "stiffness-limit" in win.findings.layer.tip(inside)
+    assert win.findings.layer.tip(rect.center() + type(inside)(0, rect.height())) == ""
+    stiff = win.view.clip_item(win.ids["stiff"])
+    assert scene.clip_at(inside) is stiff  # under the shading, the clip is still found
+    sine = win.view.clip_scene_rect(win.ids["c1"]).center()  # a drive lane: no finding there
+    assert win.findings.layer.tip(sine) == ""
+    assert scene.clip_at(sine).toolTip().startswith("sine")

@@ -111,9 +111,15 @@ def test_history_menu_jumps_to_a_named_step(window, qtbot):
     menu.popup(win.mapToGlobal(QPoint(40, 40)))
     qtbot.waitUntil(menu.isVisible)
     texts = [a.text() for a in menu.actions()]
-    assert texts[:4] == ["3. duplicate", "2. reverse", "1. move clip", "0. open"]
-    assert [a.text() for a in menu.actions() if a.isChecked()] == ["3. duplicate"]
-    choose(menu, "1. move clip")
+    assert texts[:4] == [  # each step named by what it changed, in seconds
+        "3. duplicate 'sine' at 2 s on 'Drive 1'",
+        "2. reverse 'sine'",
+        "1. move 'sine' to 1 s",
+        "0. open",
+    ]
+    assert [a.text() for a in menu.actions() if a.isChecked()] == [texts[0]]
+    choose(menu, "1. move 'sine' to 1 s")
+    assert win.messages.text == "back to step 1: move 'sine' to 1 s"
     clip = win.doc.project.find_clip(c1)[1]
     assert clip.start == pytest.approx(1.0) and not clip.reverse
     assert len(win.doc.project.track(win.ids["t1"]).clips) == 1

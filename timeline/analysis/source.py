@@ -38,6 +38,24 @@ def mono_blocks(path: Path) -> Iterator[np.ndarray]:
             yield block @ mix if f.channels > 1 else block[:, 0]
 
 
+def mono_samples(path: Path) -> np.ndarray:
+    """The file's mono mix as one read-only float32 array, filled block by block (no list of
+    blocks, no second copy): a tile keeps it as it is."""
+    with _open(path) as f:
+        frames = f.frames
+    out = np.empty(frames, dtype=np.float32)
+    filled = 0
+    for block in mono_blocks(path):
+        if filled + len(block) > frames:
+            raise AnalysisError(f"{path.name} holds more samples than it declares")
+        out[filled : filled + len(block)] = block
+        filled += len(block)
+    if filled != frames:
+        raise AnalysisError(f"{path.name} ended after {filled} of its {frames} samples")
+    out.setflags(write=False)
+    return out
+
+
 def _level(path: Path, settings: AnalysisSettings) -> tuple[Level, int]:
     total, count, peak = 0.0, 0, 0.0
     for block in mono_blocks(path):

@@ -17,6 +17,7 @@ from timeline.plugins import discovery
 ORDER = (
     "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
     "accumulation", "edit-to-feel", "scale", "convert", "formats", "waves", "design-drag",
+    "media", "compare", "convert-memory", "playback", "editor",
 )  # fmt: skip
 
 BUILT_IN = {
@@ -31,6 +32,11 @@ BUILT_IN = {
     "formats": "timeline.bench.formats",
     "waves": "timeline.bench.waves",
     "design-drag": "timeline.bench.design_drag",
+    "media": "timeline.bench.project_media",
+    "compare": "timeline.bench.compare_icons",
+    "convert-memory": "timeline.bench.convert_memory",
+    "playback": "timeline.bench.playback",
+    "editor": "timeline.bench.editor",
 }
 
 

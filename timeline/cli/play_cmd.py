@@ -108,6 +108,7 @@ def run(args: argparse.Namespace) -> int:
         rate = device.info.rate if project.axis == "time" else project.rate
         for note in aliasing_notes(project, rate):
             print(f"haptic-timeline: warning: {note}", file=sys.stderr)
+        device.warm_up()  # compiled code loads now, not while a real-time device waits
         telemetry = device.play(playback.program, hand, progress)
     progress.done()
     print(f"{Path(args.project).name} on {device.info.name} with hand {hand}")

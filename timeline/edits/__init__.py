@@ -4,7 +4,8 @@ changed (the undo history keeps the states).
 One module per thing an edit changes: tracks (and a new project), palette (tiles and tabs),
 clips, variants (their names are re-exported here: `edits.add_clip(...)`), tile_shape and
 tile_params (a tile's points and parameters), placement (where a clip fits), markers, vibration
-(vibrotactile designs and their emphasis), sound_track (the source sound); history is undo/redo.
+(vibrotactile designs and their emphasis), sound_track (the source sound), naming (unique
+names for new tiles); history is undo/redo.
 """
 
 from timeline.edits.clips import (

@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from timeline.edits.naming import unique_tile_name
 from timeline.edits.palette import add_tile
 from timeline.errors import EditError
 from timeline.model import (
@@ -362,6 +363,7 @@ def merge_clips(
                 clip, project.tile(clip.tile_id), t0 + i0 / rate, rate, i1 - i0, exact
             )
             total[i0:i1] += values * (scale_of[track.id] / scale_of[target.id])
+    name = unique_tile_name(project, name)  # "merged", "merged 2", ...
     tile = SampledTile(total, rate, name, source="merge of " + ", ".join(ids))
     project, tile_id = add_tile(project, tile, "Scratch")
     if replace_clips:

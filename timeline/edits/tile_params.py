@@ -11,6 +11,7 @@ import math
 from dataclasses import replace
 
 from timeline import edits
+from timeline.edits.naming import unique_tile_name
 from timeline.errors import EditError
 from timeline.model import Project
 from timeline.signal.generators import GENERATORS
@@ -27,10 +28,12 @@ def set_param(project: Project, tile_id: str, name: str, value: float) -> Projec
     if name not in dict(tile.params):
         raise EditError(f"generator {tile.generator!r} has no parameter {name!r}")
     params = tuple((k, float(value) if k == name else v) for k, v in tile.params)
-    new = GeneratorTile(tile.generator, tile.duration, params, tile.name)
-    try:
+    if not math.isfinite(float(value)):
+        raise EditError(f"{name} must be a finite number, not {value!r}")
+    try:  # the tile refuses what its generator cannot render (GeneratorSpec.check)
+        new = GeneratorTile(tile.generator, tile.duration, params, tile.name)
         new.evaluate(_probe(new))
-    except (ValueError, ZeroDivisionError) as exc:
+    except (EditError, ValueError, ZeroDivisionError) as exc:
         raise EditError(f"{name} = {value:g} does not make a {tile.generator}: {exc}") from None
     project = edits.replace_tile(project, tile_id, new)
     natural = GENERATORS[tile.generator].length
@@ -83,7 +86,8 @@ def editable(project: Project, tile_id: str, clip_ids: list[str]) -> tuple[Proje
     if tile_id not in templates:
         return project, tile_id
     tile = project.tile(tile_id)
-    project, copy = edits.add_tile(project, tile.with_name(f"{tile.name} copy"), "Scratch")
+    name = unique_tile_name(project, f"{tile.name} copy")
+    project, copy = edits.add_tile(project, tile.with_name(name), "Scratch")
     chosen = set(clip_ids)
     tracks = tuple(
         replace(

@@ -9,6 +9,7 @@ import numpy as np
 
 from timeline import edits
 from timeline.edits import replace_tile
+from timeline.edits.naming import span_text, unique_tile_name
 from timeline.errors import EditError
 from timeline.model import Project
 from timeline.signal.render_presets import preset
@@ -119,17 +120,17 @@ def editable_copy(project: Project, tile_id: str, tab: str = "Scratch") -> tuple
     else:
         vs = tile.evaluate(ts)
     points = tuple((float(t), float(v)) for t, v in zip(ts, vs, strict=True))
-    return edits.add_tile(
-        project, SplineTile(points, tile.duration, "natural", f"{tile.name} (edit)"), tab
-    )
+    name = unique_tile_name(project, f"{tile.name} (edit)")
+    return edits.add_tile(project, SplineTile(points, tile.duration, "natural", name), tab)
 
 
-def range_tile(tile: Tile, a: float, b: float, rate: float) -> Tile:
-    """The part [a, b) of a tile as a new tile starting at 0."""
+def range_tile(tile: Tile, a: float, b: float, rate: float, name: str = "") -> Tile:
+    """The part [a, b) of a tile as a new tile starting at 0 (named after the range in seconds
+    unless a name is given)."""
     a, b = max(0.0, min(a, b)), min(tile.duration, max(a, b))
     if b - a <= 0:
         raise EditError("select a range of the tile first")
-    name = f"{tile.name} {a:.3g}-{b:.3g}"
+    name = name or f"{tile.name} {span_text(a, b, 'time')}"
     if isinstance(tile, SplineTile):
         inside = [(t - a, v) for t, v in tile.points if a < t < b]
         ends = [
@@ -150,5 +151,9 @@ def range_tile(tile: Tile, a: float, b: float, rate: float) -> Tile:
 def range_to_palette(
     project: Project, tile_id: str, a: float, b: float, tab: str = "Scratch"
 ) -> tuple[Project, str]:
-    """Add the range [a, b) of a tile to a palette tab as a new tile."""
-    return edits.add_tile(project, range_tile(project.tile(tile_id), a, b, project.rate), tab)
+    """Add the range [a, b) of a tile to a palette tab as a new tile, named after the range in
+    the project's display units ("four detents 20-260 deg")."""
+    tile = project.tile(tile_id)
+    lo, hi = max(0.0, min(a, b)), min(tile.duration, max(a, b))
+    name = unique_tile_name(project, f"{tile.name} {span_text(lo, hi, project.axis)}")
+    return edits.add_tile(project, range_tile(tile, a, b, project.rate, name), tab)

@@ -43,3 +43,28 @@ def remove_variant(project: Project, name: str) -> Project:
         variants=tuple(v for v in project.variants if v.name != name),
         active_variant=active,
     )
+
+
+def removed_names(before: Project, after: Project) -> frozenset[str]:
+    """The variants an edit removed (a deletion step's, or a new project's)."""
+    return frozenset(v.name for v in before.variants) - {v.name for v in after.variants}
+
+
+def kept_across(
+    shown: Project, target: Project, removed: frozenset[str], restored: dict[str, Variant]
+) -> Project:
+    """`target` (a step undo, redo or a history jump arrives at) with every variant still alive.
+
+    A variant outlives the steps it was saved in: only its own deletion removes it. `removed`
+    names the variants deleted by the steps redone on the way; `restored` holds the ones whose
+    deletion was undone on the way. A variant the target has comes back as it was at that step.
+    """
+    kept = {v.name: v for v in shown.variants if v.name not in removed}
+    for name, variant in restored.items():
+        kept.setdefault(name, variant)
+    ordered = list(target.variants)
+    names = {v.name for v in ordered}
+    ordered += [v for name, v in kept.items() if name not in names]
+    if len(ordered) == len(target.variants):
+        return target
+    return replace(target, variants=tuple(ordered))

@@ -32,7 +32,7 @@ def write_atomically(path: str | os.PathLike, write: Callable[[Path], None]) -> 
     os.close(fd)
     tmp = Path(name)
     try:
-        os.chmod(tmp, _file_mode(path))
+        os.chmod(tmp, file_mode(path))
         write(tmp)
         _fsync(tmp, os.O_RDONLY)
         os.replace(tmp, path)
@@ -93,8 +93,10 @@ def _fsync(path: Path, flags: int) -> None:
         os.close(fd)
 
 
-def _file_mode(path: Path) -> int:
-    """An existing file's permissions; for a new file the usual 0666 less the umask."""
+def file_mode(path: str | os.PathLike) -> int:
+    """An existing file's permissions; for a new file the usual 0666 less the umask (what a
+    temporary file made by `tempfile`, always 0600, is given before it replaces `path`)."""
+    path = Path(path)
     try:
         return path.stat().st_mode & 0o777
     except OSError:

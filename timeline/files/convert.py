@@ -18,7 +18,7 @@ import numpy as np
 
 from timeline import edits
 from timeline.analysis import DEFAULTS, AnalysisSettings, SoundAnalysis
-from timeline.analysis.source import analyse_file, mono_blocks
+from timeline.analysis.source import analyse_file, mono_samples
 from timeline.edits.sound_track import add_sound
 from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
 from timeline.errors import ConvertError
@@ -67,7 +67,7 @@ def analyse_sound_file(
             f"{path.name} lasts {analysis.duration / 60:.0f} minutes; a project keeps sounds up to "
             f"{MAX_SOUND_SECONDS / 60:.0f} minutes (convert it to .haptic or .ahap instead)"
         )
-    return ConvertedSound(path, analysis, np.concatenate(list(mono_blocks(path))))
+    return ConvertedSound(path, analysis, mono_samples(path))
 
 
 def place_converted(

@@ -1,17 +1,21 @@
-"""The .htl project file: JSON with a schema version, sampled media stored losslessly inside.
+"""The .htl project file: JSON with a schema version, then sampled media as a binary appendix.
 
-Loading runs no code (plain JSON, no pickle or eval), bounds every declared size, and turns any
-malformed content into one ProjectFileError sentence. Saving is atomic: a crash mid-save leaves
-the previous file intact.
+A saved file is human-readable JSON (the whole project), and when it holds recordings a marked
+binary appendix of their raw samples, which the JSON's media entries name by offset, length and
+hash (timeline.files.media; the layout is in docs/formats.md). The text form (dumps, loads: the
+clipboard) keeps samples inside the JSON as base64, as files of schema 3 and older did; both
+open. Loading runs no code (plain JSON, no pickle or eval), bounds every declared size, and turns
+any malformed content, a truncated or damaged appendix among it, into one ProjectFileError
+sentence. Saving is atomic: a crash mid-save leaves the previous file intact.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import io
 import json
 import math
 import os
-import secrets
 import typing
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from operator import attrgetter, itemgetter
@@ -30,11 +34,12 @@ from timeline.files.atomic import write_atomically
 from timeline.model import Clip, Fade, PaletteTab, Project, Track, Variant
 from timeline.model.id_sequence import IdSequence
 from timeline.model.markers import LoopRegion, Marker
+from timeline.signal.samples import ContentKey
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.tiles.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
-SCHEMA = 3  # 2: vibration tiles; 3: markers and the loop region
+SCHEMA = 4  # 2: vibration tiles; 3: markers and the loop region; 4: the binary appendix
 MAX_FILE_BYTES = 4 * 2**30
 
 
@@ -51,8 +56,17 @@ def _schema_2_to_3(doc: dict) -> dict:
     return {**doc, "schema": 3, "project": body}
 
 
+def _schema_3_to_4(doc: dict) -> dict:
+    """Schema 4 stores media raw in a binary appendix; base64 media entries stay valid."""
+    return {**doc, "schema": 4}
+
+
 # Upgrade functions keyed by the schema version they read; each returns the next version's dict.
-MIGRATIONS: dict[int, Callable[[dict], dict]] = {1: _schema_1_to_2, 2: _schema_2_to_3}
+MIGRATIONS: dict[int, Callable[[dict], dict]] = {
+    1: _schema_1_to_2,
+    2: _schema_2_to_3,
+    3: _schema_3_to_4,
+}
 
 
 # --- the clip schema ---------------------------------------------------------------------------
@@ -244,13 +258,17 @@ def _clip(obj: Any, where: str) -> Clip:
 # --- writing -----------------------------------------------------------------------------------
 
 
-MediaEntry = Callable[[np.ndarray], dict[str, Any]]
+MediaEntry = Callable[[SampledTile], dict[str, Any]]
+
+
+def _base64_entry(tile: SampledTile) -> dict[str, Any]:
+    return sample_media.encode(tile.data)
 
 
 def _tile_to_json(tile: Tile, media: dict[str, Any], entry: MediaEntry) -> dict[str, Any]:
     if isinstance(tile, SampledTile):
         if tile.key not in media:  # a recording shared by tiles and variants is encoded once
-            media[tile.key] = entry(tile.data)
+            media[tile.key] = entry(tile)
         return {
             "type": "sampled",
             "name": tile.name,
@@ -306,7 +324,7 @@ def _id_order(item_id: str) -> tuple[str, int, str]:
 def to_json(
     project: Project,
     clips_json: Callable[[Sequence[Clip]], list] = _clips_to_json,
-    media_entry: MediaEntry = sample_media.encode,
+    media_entry: MediaEntry = _base64_entry,
 ) -> dict[str, Any]:
     """The project as a JSON-ready dict (schema SCHEMA); clips_json writes the clips of each of
     the project's own tracks (a variant's tracks are saved one line each, as plain dicts) and
@@ -363,10 +381,14 @@ def _text(value: Any, compact: Callable[[Any], str], depth: int = 0) -> str:
     return "[" + pad + ("," + pad).join(_text(v, compact, depth + 1) for v in value) + close + "]"
 
 
-def dumps(project: Project, media_entry: MediaEntry = sample_media.encode) -> str:
-    """The project file's text."""
+def dumps(project: Project) -> str:
+    """The project as one text (the clipboard's form): its recordings as base64 inside the JSON."""
+    return _dumped(to_json(project, _clip_lines))
+
+
+def _dumped(doc: dict[str, Any]) -> str:
     try:
-        return _text(to_json(project, _clip_lines, media_entry), _COMPACT.encode) + "\n"
+        return _text(doc, _COMPACT.encode) + "\n"
     except (TypeError, ValueError) as exc:
         raise ProjectFileError(f"the project cannot be saved: {exc}") from None
 
@@ -374,27 +396,32 @@ def dumps(project: Project, media_entry: MediaEntry = sample_media.encode) -> st
 def save(project: Project, path: str | os.PathLike) -> None:
     """Write the project atomically: the old file stays intact until the new one is complete.
 
-    The bytes are dumps(project)'s, but each recording's samples are streamed into the file in
-    pieces where its text would be, so an hour's base64 is never held as one string.
+    The JSON document comes first; each recording's samples follow it in the binary appendix,
+    written straight from the tile's array (its media entry's hash is the tile's content key,
+    already known: nothing is hashed, encoded or copied).
     """
-    marker = f"\0samples-{secrets.token_hex(8)}-"  # in no other string of the file
     recordings: list[np.ndarray] = []
+    appendix = 0
 
-    def placeholder(data: np.ndarray) -> dict[str, Any]:
-        recordings.append(data)
-        return sample_media.header(data, f"{marker}{len(recordings) - 1}")
+    def raw(tile: SampledTile) -> dict[str, Any]:
+        nonlocal appendix
+        entry = sample_media.raw_entry(tile.data, tile.rate, tile.key, appendix)
+        recordings.append(tile.data)
+        appendix += entry["length"]
+        return entry
 
-    text = dumps(project, placeholder)
+    doc = to_json(project, _clip_lines, raw)
+    if recordings:
+        doc["appendix"] = {"bytes": appendix}
+    text = _dumped(doc).encode("utf-8")
 
     def write(tmp: Path) -> None:
         with open(tmp, "wb") as out:
-            rest = text
-            for i, data in enumerate(recordings):
-                before, rest = rest.split(_COMPACT.encode(f"{marker}{i}"), 1)
-                out.write(before.encode("utf-8") + b'"')
-                sample_media.write_base64(data, out)
-                out.write(b'"')
-            out.write(rest.encode("utf-8"))
+            out.write(text)
+            if recordings:
+                out.write(sample_media.SEPARATOR)
+                for data in recordings:
+                    sample_media.write_raw(data, out)
 
     write_atomically(path, write)
 
@@ -402,11 +429,14 @@ def save(project: Project, path: str | os.PathLike) -> None:
 # --- reading -----------------------------------------------------------------------------------
 
 
-def _tile_from_json(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
+Media = dict[str, tuple[np.ndarray, ContentKey | None]]
+
+
+def _tile_from_json(obj: Any, media: Media, where: str) -> Tile:
     return _built(lambda: _tile(obj, media, where), where)
 
 
-def _tile(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
+def _tile(obj: Any, media: Media, where: str) -> Tile:
     kind = fields.get(obj, "type", str, where)
     name = fields.get(obj, "name", str, where)
     if kind == "sampled":
@@ -414,7 +444,12 @@ def _tile(obj: Any, media: dict[str, np.ndarray], where: str) -> Tile:
         if key not in media:
             raise FieldError(f"{where} refers to missing media {key!r}")
         rate = fields.number(obj, "rate", where, positive=True)
-        return SampledTile(media[key], rate, name, fields.text(obj, "source", where, ""))
+        data, content = media[key]
+        source = fields.text(obj, "source", where, "")
+        if content is None:
+            return SampledTile(data, rate, name, source)
+        # read raw: checked finite and hashed while read, so the tile's key costs nothing
+        return SampledTile.from_checked(data, rate, name, source, content.key(rate))
     if kind == "spline":
         points = fields.get(obj, "points", list, where)
         if not all(isinstance(p, list) and len(p) == 2 for p in points):
@@ -514,8 +549,9 @@ def _check_references(project: Project) -> None:
             raise FieldError(f"palette tab {tab.name!r} lists missing tile {missing[0]!r}")
 
 
-def from_json(doc: Any) -> Project:
-    """Build a project from a parsed file, migrating older schemas; FieldError if malformed."""
+def from_json(doc: Any, appendix: sample_media.Appendix | None = None) -> Project:
+    """Build a project from a parsed file (and its binary appendix, if it has one), migrating
+    older schemas; FieldError if malformed."""
     if not isinstance(doc, dict) or doc.get("format") != FORMAT:
         raise FieldError("it is not a haptic-timeline project")
     version = doc.get("schema")
@@ -530,8 +566,9 @@ def from_json(doc: Any) -> Project:
         doc = MIGRATIONS[version](doc)
         version += 1
     body = fields.get(doc, "project", dict, "the file")
+    sample_media.check_size(appendix, doc.get("appendix"))
     media = {
-        k: sample_media.decode(v, f"media {k!r}")
+        k: sample_media.samples_of(v, f"media {k!r}", appendix)
         for k, v in fields.get(doc, "media", dict, "the file").items()
     }
 
@@ -611,16 +648,29 @@ def _tile_ids(items: list) -> list[str]:
 
 
 def loads(text: str | bytes, name: str = "the project") -> Project:
-    """Parse a project file's content."""
-    return _opened(lambda: json.loads(text, parse_constant=fields.refuse_constant), name)
+    """Parse a project file's content: text, or a saved file's bytes (its appendix too)."""
+    if isinstance(text, str):
+        return _opened(lambda: from_json(_parsed(text)), name)
+    return _opened(lambda: _read(io.BytesIO(text)), name)
 
 
-def _opened(parse: Callable[[], Any], name: str) -> Project:
-    """The project from parse()'s document; any problem is one ProjectFileError sentence."""
+def _parsed(text: str | bytes | bytearray) -> Any:
+    return json.loads(text, parse_constant=fields.refuse_constant)
+
+
+def _read(file: io.BufferedIOBase) -> Project:
+    """The project of an open file: its JSON document, then its appendix's samples."""
+    text, appendix = sample_media.split(file)
+    doc = _parsed(text)
+    del text  # let go of the JSON's bytes before the recordings are read
+    return from_json(doc, appendix)
+
+
+def _opened(read: Callable[[], Project], name: str) -> Project:
+    """The project read(); any problem is one ProjectFileError sentence."""
     try:
         with gc_pause.paused():
-            doc = parse()
-            return from_json(doc)
+            return read()
     except HapticTimelineError as exc:  # a FieldError among them
         raise ProjectFileError(f"{name} cannot be opened: {exc}") from None
     except (ValueError, UnicodeDecodeError) as exc:
@@ -640,10 +690,11 @@ def load(path: str | os.PathLike) -> Project:
     if size > MAX_FILE_BYTES:
         raise ProjectFileError(f"{path} is {size} bytes, larger than a project file can be")
 
-    def parse() -> Any:  # the file's bytes are let go once parsed, before recordings are inflated
-        return json.loads(path.read_bytes(), parse_constant=fields.refuse_constant)
+    def read() -> Project:
+        with open(path, "rb") as file:
+            return _read(file)
 
-    return _opened(parse, str(path))
+    return _opened(read, str(path))
 
 
 def _markers_json(project: Project) -> dict:

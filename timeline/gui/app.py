@@ -10,34 +10,49 @@ from timeline.files import projectfile
 
 if TYPE_CHECKING:
     from PySide6.QtCore import QRect
-    from PySide6.QtWidgets import QWidget
+    from PySide6.QtWidgets import QApplication, QWidget
+
+    from .main_window import MainWindow
 
 ORGANISATION = "haptic-timeline"  # QSettings (recent files) live under this name
 
 
 def run(path: str | None = None) -> int:
     """Open the editor (on a project file, or a new project) and run until it closes."""
+    app, _window = launch(path)
+    return app.exec()
+
+
+def launch(path: str | None = None) -> tuple[QApplication, MainWindow]:
+    """The application and its window shown on a project (painted once the event loop runs).
+
+    Nothing on the way to the first paint loads scipy.signal or numba: the findings check starts
+    after it (findings_overlay) and the sound analysis with the first sound converted.
+    """
     from PySide6.QtWidgets import QApplication
 
     from .main_window import MainWindow
 
     project = projectfile.load(path) if path and Path(path).exists() else None
     app = QApplication.instance() or QApplication(sys.argv[:1])
+    assert isinstance(app, QApplication)
     app.setOrganizationName(ORGANISATION)
     app.setApplicationName("haptic-timeline")
     window = MainWindow(project, Path(path) if path else None)
     screen = QApplication.primaryScreen()
     if screen is not None:
-        fit_to_screen(window, screen.availableGeometry())
+        fit_to_screen(window, screen.availableGeometry(), keep_place=window.restored)
     window.show()
     window.view.fit()
     window.offer_recovery()
-    return app.exec()
+    return app, window
 
 
-def fit_to_screen(window: QWidget, available: QRect) -> None:
+def fit_to_screen(window: QWidget, available: QRect, keep_place: bool = False) -> None:
     """Shrink the window to the screen's free area (a 1280x800 laptop) and place it there;
-    it never goes below its own minimum size."""
+    it never goes below its own minimum size. With `keep_place` (the size and place remembered
+    from the last session), it moves only if it would not lie wholly inside that area."""
     size = window.size().boundedTo(available.size()).expandedTo(window.minimumSizeHint())
     window.resize(size)
-    window.move(available.topLeft())
+    if not (keep_place and available.contains(window.geometry())):
+        window.move(available.topLeft())

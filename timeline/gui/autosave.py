@@ -82,9 +82,10 @@ class Autosaver(QObject):
     """Writes the document to the autosave folder once it has been idle for IDLE_MS.
 
     The write runs on a thread of its own (a project is immutable, so the snapshot taken when the
-    editor goes idle cannot change under it): saving a project that holds an hour of audio takes
-    tens of seconds, and the editor stays usable meanwhile. One write runs at a time; an idle
-    moment during a write autosaves again after the next interval. A write that fails says so
+    editor goes idle cannot change under it): a project holding an hour of audio writes 635 MB of
+    samples and syncs them, about a second on a quiet disk, and the editor stays usable meanwhile.
+    One write runs at a time; an idle moment during a write autosaves again after the next
+    interval. A write that fails says so
     through `failed` (one line); the next change autosaves again.
     """
 

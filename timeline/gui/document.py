@@ -31,6 +31,9 @@ class Document(QObject):
         self.path = path
         self.selected_clips: list[str] = []
         self.selected_tile: str | None = None
+        self.selected_marker: int | None = None  # index in the project's sorted markers
+        self.selected_track: str | None = None
+        self.inspected = "clip"  # what was selected last: "clip", "marker" or "track"
         self._announced: object = None  # merge key of the drag last announced
 
     @property
@@ -77,9 +80,9 @@ class Document(QObject):
         if not self.history.can_undo:
             self.message.emit("nothing to undo", "info")
             return
-        label = self.history.undo_label
+        name = self.history.undo_name
         self.history.undo()
-        self.message.emit(f"undid {label}", "info")
+        self.message.emit(f"undid {name}", "info")
         self._prune_selection()
         self._emit_changed()
 
@@ -89,7 +92,7 @@ class Document(QObject):
             self.message.emit("nothing to redo", "info")
             return
         self.history.redo()
-        self.message.emit(f"redid {self.history.undo_label}", "info")
+        self.message.emit(f"redid {self.history.undo_name}", "info")
         self._prune_selection()
         self._emit_changed()
 
@@ -97,8 +100,9 @@ class Document(QObject):
         """Jump to a step of the history (Edit > History)."""
         if index == self.history.index:
             return
+        way = "back" if index < self.history.index else "forward"
         self.history.go_to(index)
-        self.message.emit(f"back to: {self.history.labels[index]}", "info")
+        self.message.emit(f"{way} to step {index}: {self.history.names[index]}", "info")
         self._prune_selection()
         self._emit_changed()
 
@@ -106,6 +110,7 @@ class Document(QObject):
         """Start over on another project (a fresh history, nothing selected)."""
         self.history = History(project)
         self.path = path
+        self.selected_marker = self.selected_track = None
         self.select_clips([])
         self.select_tile(None)
         self._emit_changed()
@@ -119,8 +124,9 @@ class Document(QObject):
     def select_clips(self, clip_ids: list[str]) -> None:
         """Replace the clip selection."""
         clip_ids = list(dict.fromkeys(clip_ids))
-        if clip_ids != self.selected_clips:
-            self.selected_clips = clip_ids
+        inspected = "clip" if clip_ids else self.inspected
+        if clip_ids != self.selected_clips or inspected != self.inspected:
+            self.selected_clips, self.inspected = clip_ids, inspected
             self.selection_changed.emit()
 
     def select_tile(self, tile_id: str | None) -> None:
@@ -129,12 +135,35 @@ class Document(QObject):
             self.selected_tile = tile_id
             self.selection_changed.emit()
 
+    def select_marker(self, index: int | None) -> None:
+        """Choose the marker the inspector shows (an index into the sorted markers)."""
+        if (index, "marker") != (self.selected_marker, self.inspected):
+            self.selected_marker, self.inspected = index, "marker"
+            self.selection_changed.emit()
+
+    def select_track(self, track_id: str | None) -> None:
+        """Choose the track the inspector shows."""
+        if (track_id, "track") != (self.selected_track, self.inspected):
+            self.selected_track, self.inspected = track_id, "track"
+            self.selection_changed.emit()
+
     def _prune_selection(self) -> None:
-        tracks = self.project.tracks
-        kept = [c for c in self.selected_clips if any(c in t.clips_by_id for t in tracks)]
-        tile = self.selected_tile if self.selected_tile in self.project.tiles else None
-        if kept != self.selected_clips or tile != self.selected_tile:
-            self.selected_clips, self.selected_tile = kept, tile
+        project = self.project
+        kept = [c for c in self.selected_clips if any(c in t.clips_by_id for t in project.tracks)]
+        tile = self.selected_tile if self.selected_tile in project.tiles else None
+        marker = self.selected_marker
+        marker = marker if marker is not None and marker < len(project.markers) else None
+        track = self.selected_track
+        track = track if any(t.id == track for t in project.tracks) else None
+        before = (
+            self.selected_clips,
+            self.selected_tile,
+            self.selected_marker,
+            self.selected_track,
+        )
+        if (kept, tile, marker, track) != before:
+            self.selected_clips, self.selected_tile, self.selected_marker = kept, tile, marker
+            self.selected_track = track
             self.selection_changed.emit()
 
     def _emit_changed(self) -> None:

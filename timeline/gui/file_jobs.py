@@ -19,6 +19,7 @@ from PySide6.QtCore import QObject, Signal
 
 from timeline.errors import HapticTimelineError
 from timeline.files import exporting, importing
+from timeline.files.atomic import file_mode
 from timeline.model import Project
 
 from .job_errors import one_line, unexpected
@@ -109,14 +110,19 @@ def import_job(path: Path) -> FileJob:
     )
 
 
-def export_job(project: Project, path: Path) -> FileJob:
-    """Export the project to a temporary file; `finish_export` renames it into place."""
+def export_job(project: Project, path: Path, **options: Any) -> FileJob:
+    """Export the project to a temporary file; `finish_export` renames it into place.
+
+    `options` are export_project's (the CLI's `--rate` and `--fixed-point`). The file gets the
+    permissions the CLI's export gives it: an existing target's, else 0666 less the umask.
+    """
 
     def work(progress: Callable[[float], None]) -> Path:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
         os.close(fd)
         try:
-            exporting.export_project(project, tmp, progress=progress)
+            os.chmod(tmp, file_mode(path))
+            exporting.export_project(project, tmp, progress=progress, **options)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise

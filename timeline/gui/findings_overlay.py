@@ -9,24 +9,32 @@ worker also computes what the device will output (rendered_overlay) and the lane
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
+import threading
+from collections import Counter
+from collections.abc import Callable
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QObject, QRectF, Qt, QTimer, Signal
+import numpy as np
+from PySide6.QtCore import QEvent, QObject, QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QBrush, QColor, QPainter, QPen
-from PySide6.QtWidgets import QGraphicsRectItem
+from PySide6.QtWidgets import QGraphicsItem
 
 from timeline.errors import HapticTimelineError
-from timeline.limits.check import Report, check
 from timeline.model import Project
 from timeline.plugins.device_protocol import DeviceInfo, Hand, open_device
 from timeline.plugins.track_kinds import track_kind
 
+from .clip_layer import runs
+from .geometry import Geometry
+from .lane_scale import visible_lanes
 from .rendered_overlay import RenderedLayer, peaks_of
 from .trace_peaks import Peaks
 
-if TYPE_CHECKING:  # scipy loads with the first rendering, not at start-up
+if TYPE_CHECKING:  # scipy loads with the first check, after the window's first paint
+    from timeline.limits.check import Report
+    from timeline.limits.findings import Finding
     from timeline.limits.rendered import Trace
 
 DELAY_MS = 250  # after the last edit
@@ -35,6 +43,11 @@ COLOURS = {"device": QColor(230, 126, 34, 60), "perception": QColor(142, 68, 173
 EDGES = {"device": QColor(211, 84, 0), "perception": QColor(110, 44, 140)}
 LAYER_OF = {"amplitude": "d", "frequency": "d"}  # a sub-JND measure's layer
 SHADE_Z = 15  # above clips, below the playhead and cursor
+LABEL_PX = 30.0  # spans this wide are drawn one by one with their kind; narrower ones merged
+
+
+class CheckCancelled(Exception):
+    """Raised inside a running check once a newer edit has made it stale (editor-internal)."""
 
 
 @dataclass(frozen=True)
@@ -47,27 +60,138 @@ class Checked:
     unrendered: str = ""  # why the traces could not be computed, when they were asked for
 
 
-class FindingShade(QGraphicsRectItem):
-    """One finding's span on one lane: hatched, outlined, its kind written at the bottom."""
+@dataclass(frozen=True)
+class Shade:
+    """One finding's span on one lane, as the shading layer draws it."""
 
-    def __init__(self, rect: QRectF, area: str, kind: str, tip: str) -> None:
-        super().__init__(rect)
-        self.area, self.kind = area, kind
-        self.setBrush(QBrush(COLOURS[area]))
-        self.setPen(QPen(EDGES[area], 1.5))
+    finding: Finding
+    lane: int
+    geometry: Geometry
+
+    @property
+    def area(self) -> str:
+        return self.finding.area
+
+    @property
+    def kind(self) -> str:
+        return self.finding.kind
+
+    def rect(self) -> QRectF:
+        """Its scene rectangle at the current zoom (at least 2 pixels wide)."""
+        g = self.geometry
+        x0, x1 = g.x(self.finding.start), g.x(self.finding.stop)
+        return QRectF(x0, g.lane_top(self.lane) + 1, max(x1 - x0, 2.0), g.lane_height - 2)
+
+    def toolTip(self) -> str:  # noqa: N802 - as the item's it replaces
+        return self.finding.describe()
+
+
+class _Group:
+    """Findings of one area shown on the same lanes, as arrays for the visible range."""
+
+    def __init__(self, area: str, lanes: tuple[int, ...], findings: list[Finding]) -> None:
+        self.area, self.lanes, self.findings = area, lanes, findings
+        self.starts = np.array([f.start for f in findings], dtype=np.float64)
+        self.stops = np.array([f.stop for f in findings], dtype=np.float64)
+
+
+class ShadeLayer(QGraphicsItem):
+    """Every finding's shading, painted for the exposed part only (one item, whatever the count).
+
+    A span is hatched and outlined on each lane of its layer, its kind written at the bottom; at
+    a zoom where spans are narrower than LABEL_PX they are merged into runs of pixels, so 1,378
+    findings on 25 lanes cost a few calls per visible lane, and a zoom rebuilds nothing.
+    """
+
+    def __init__(self, geometry: Geometry) -> None:
+        super().__init__()
+        self.g = geometry
+        self.groups: list[_Group] = []
+        self._rect = QRectF()
         self.setZValue(SHADE_Z)
-        self.setToolTip(tip)
         self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
+        self.setFlag(QGraphicsItem.GraphicsItemFlag.ItemUsesExtendedStyleOption)
+
+    def show(self, project: Project, findings: tuple[Finding, ...]) -> None:
+        """Shade these findings on the project's lanes."""
+        terms = [track_kind(t.kind).term for t in project.tracks]
+        grouped: dict[tuple[str, tuple[int, ...]], list[Finding]] = {}
+        for finding in findings:
+            layer = LAYER_OF.get(finding.layer, finding.layer)
+            lanes = tuple(i for i, term in enumerate(terms) if term == layer) or tuple(
+                range(len(terms))
+            )
+            grouped.setdefault((finding.area, lanes), []).append(finding)
+        self.groups = [_Group(area, lanes, f) for (area, lanes), f in grouped.items()]
+        self.update()
+
+    def shades(self) -> list[Shade]:
+        """One per finding per lane it is shown on."""
+        return [
+            Shade(f, lane, self.g)
+            for grp in self.groups
+            for f in grp.findings
+            for lane in grp.lanes
+        ]
+
+    def resize(self, rect: QRectF) -> None:
+        """Cover the scene rectangle."""
+        if rect != self._rect:
+            self.prepareGeometryChange()
+            self._rect = QRectF(rect)
+
+    def boundingRect(self) -> QRectF:  # noqa: N802 - Qt's name
+        return self._rect
+
+    def tip(self, pos: QPointF) -> str:
+        """The sentence of the finding under a scene position ("" if none)."""
+        lane = self.g.lane_at(pos.y())
+        u = self.g.u(pos.x())
+        slack = self.g.u(1.0)  # a span drawn 2 pixels wide is hovered that wide
+        for grp in self.groups:
+            if lane in grp.lanes:
+                hit = np.flatnonzero((grp.starts <= u + slack) & (grp.stops >= u - slack))
+                if hit.size:
+                    return grp.findings[int(hit[0])].describe()
+        return ""
 
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
-        super().paint(painter, option, widget)
-        rect = self.rect()
-        painter.fillRect(rect, QBrush(EDGES[self.area], Qt.BrushStyle.BDiagPattern))
-        painter.setPen(EDGES[self.area])
+        exposed = option.exposedRect
+        g = self.g
+        u0, u1 = g.u(exposed.left() - 2), g.u(exposed.right() + 2)
+        lanes_shown = visible_lanes(g, 1 << 30, exposed)
         font = painter.font()
         font.setPointSizeF(7.5)
         painter.setFont(font)
-        painter.drawText(rect.adjusted(3, 0, -2, -2), Qt.AlignmentFlag.AlignBottom, self.kind)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # rectangles on pixels
+        for grp in self.groups:
+            lanes = [lane for lane in grp.lanes if lane in lanes_shown]
+            if not lanes:
+                continue
+            seen = np.flatnonzero((grp.starts <= u1) & (grp.stops >= u0))
+            x0 = grp.starts[seen] * g.px_per_unit
+            x1 = np.maximum(grp.stops[seen] * g.px_per_unit, x0 + 2.0)
+            wide = (x1 - x0) >= LABEL_PX
+            kinds = [grp.findings[i].kind for i in seen[wide].tolist()]
+            labels = list(zip(x0[wide].tolist(), x1[wide].tolist(), kinds, strict=True))
+            spans = runs(x0[~wide], x1[~wide]) + [(a, b) for a, b, _ in labels]
+            edge = EDGES[grp.area]
+            for lane in lanes:
+                top, h = g.lane_top(lane) + 1, g.lane_height - 2
+                rects = [QRectF(a, top, b - a, h) for a, b in spans]
+                painter.setPen(QPen(edge, 1))  # 1 px: a wider pen is stroked, 10x slower
+                painter.setBrush(QBrush(COLOURS[grp.area]))
+                painter.drawRects(rects)
+                painter.setPen(Qt.PenStyle.NoPen)
+                painter.setBrush(QBrush(edge, Qt.BrushStyle.BDiagPattern))
+                painter.drawRects(rects)
+                painter.setPen(edge)
+                for a, b, kind in labels:
+                    painter.drawText(
+                        QRectF(a, top, b - a, h).adjusted(3, 0, -2, -2),
+                        Qt.AlignmentFlag.AlignBottom,
+                        kind,
+                    )
 
 
 def summary(report: Report) -> str:
@@ -85,7 +209,12 @@ def summary(report: Report) -> str:
 
 
 class FindingsOverlay(QObject):
-    """Checks the document after edits and shows the findings on the timeline view."""
+    """Checks the document after edits and shows the findings on the timeline view.
+
+    One check runs at a time: an edit makes the running check stale and stops it at its next
+    step (limits.check's `interrupt`), a queued one is dropped, so a drag with pauses leaves no
+    pile of checks behind it. The first check waits for the window's first paint.
+    """
 
     ready = Signal(object, int)  # Checked or HapticTimelineError, version
 
@@ -95,30 +224,68 @@ class FindingsOverlay(QObject):
         self.report: Report | None = None
         self.version = 0
         self._done = -1  # the version the shown report belongs to
-        self.shades: list[FindingShade] = []
+        self.layer = ShadeLayer(view.scene().lane_geometry)
+        view.scene().addItem(self.layer)
+        view.scene().tip_sources.append(self.layer.tip)
         self.traces: tuple[Trace, ...] = ()
         self.peaks: tuple[Peaks, ...] = ()
         self.rendered = RenderedLayer(view.scene())
         self._unrendered = ""  # the last rendering error said
         self._infos: dict[str, DeviceInfo] = {}
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="findings")
+        self._future: Future | None = None  # the latest check, queued or running
+        self._stop = threading.Event()  # set to stop the latest check
+        self._lock = threading.Lock()
+        self.counts: Counter[str] = Counter()  # started, finished, cancelled (for the bench)
+        self._running: dict[int, threading.Event] = {}  # version -> stop, of started checks
+        self._closed = False
+        self._drawn: object = None  # the report and lane terms the shading was grouped for
         self._timer = QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.timeout.connect(self._start)
         self.ready.connect(self._show)
         doc.changed.connect(lambda _project: self.schedule())
         view.scene().sceneRectChanged.connect(lambda _rect: self._redraw())  # zoom, new lanes
-        self.schedule()
+        view.viewport().installEventFilter(self)  # the first check after the first paint
+
+    @property
+    def shades(self) -> list[Shade]:
+        """The shading: one per finding per lane it is shown on."""
+        return self.layer.shades()
 
     @property
     def settled(self) -> bool:
         """True when the shown findings belong to the document as it is."""
         return self.report is not None and not self._timer.isActive() and self._done == self.version
 
+    @property
+    def busy(self) -> bool:
+        """True while a check is queued or running."""
+        return self._future is not None and not self._future.done()
+
+    def stale_running(self) -> list[int]:
+        """Versions of checks still running though an edit has made them stale."""
+        with self._lock:
+            return [v for v in self._running if v != self.version]
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
+        if event.type() == QEvent.Type.Paint:
+            watched.removeEventFilter(self)
+            if self.report is None and not self._timer.isActive():
+                self.schedule()
+        return False
+
     def schedule(self) -> None:
-        """Check again once edits pause."""
+        """Check again once edits pause; the check under way (now stale) stops."""
         self.version += 1
+        self._cancel()
         self._timer.start(DELAY_MS)
+
+    def _cancel(self) -> None:
+        """Drop the latest check if it is queued, or tell it to stop if it runs."""
+        if self._future is not None and not self._future.cancel():
+            self._stop.set()
+        self._future = None
 
     def show_rendered(self, on: bool) -> None:
         """Draw the device's output over the lanes (computed after the next check) or stop."""
@@ -154,14 +321,63 @@ class FindingsOverlay(QObject):
                 f"the design is too long to check while editing ({project.duration:.0f} s); "
                 "run haptic-timeline check on it"), version)  # fmt: skip
             return
-        future = self._pool.submit(_check, project, info, self.player.hand, self.rendered.shown)
-        future.add_done_callback(lambda f: self.ready.emit(f.result(), version))
+        self._cancel()
+        self._stop = stop = threading.Event()
+        future = self._pool.submit(
+            self._run, project, info, self.player.hand, self.rendered.shown, stop, version
+        )
+        self._future = future
+        future.add_done_callback(lambda f: self._finished(f, version))
+
+    def _run(
+        self,
+        project: Project,
+        info: DeviceInfo,
+        hand: Hand,
+        render: bool,
+        stop: threading.Event,
+        version: int,
+    ) -> Checked | HapticTimelineError | None:
+        """Worker thread: the check, or None when it was stopped as stale."""
+
+        def interrupt() -> None:
+            if stop.is_set():
+                raise CheckCancelled
+
+        with self._lock:
+            self.counts["started"] += 1
+            self._running[version] = stop
+        try:
+            result = _check(project, info, hand, render, interrupt)
+        except CheckCancelled:
+            self._count("cancelled")
+            return None
+        finally:
+            with self._lock:
+                del self._running[version]
+        self._count("finished")
+        return result
+
+    def _count(self, what: str) -> None:
+        with self._lock:
+            self.counts[what] += 1
+
+    def _finished(self, future: Future, version: int) -> None:
+        """Any thread: hand a check's result to the GUI thread (nothing once closed or stale)."""
+        if future.cancelled():  # dropped before it started
+            self._count("cancelled")
+            return
+        result = future.result()
+        if result is not None and not self._closed:
+            self.ready.emit(result, version)
 
     def _show(self, result: Checked | HapticTimelineError, version: int) -> None:
         if version != self.version:
             return  # an edit came since: its own check follows
         self._done = version
         if isinstance(result, HapticTimelineError):
+            from timeline.limits.check import Report
+
             text = f"Cannot check the design: {result}"
             if self.report is None or self.report.notes != (text,):
                 self.messages.show_message(text, "error")
@@ -183,46 +399,49 @@ class FindingsOverlay(QObject):
         self._unrendered = result.unrendered
 
     def _redraw(self) -> None:
+        self.layer.resize(self.view.scene().sceneRect())
         if self.report is not None:
             self._draw(self.doc.project, self.report)
 
     def _draw(self, project: Project, report: Report) -> None:
-        scene = self.view.scene()
-        for shade in self.shades:
-            scene.removeItem(shade)
-        self.shades = []
-        geometry = scene.lane_geometry
-        terms = [track_kind(t.kind).term for t in project.tracks]
-        for finding in report.findings:
-            layer = LAYER_OF.get(finding.layer, finding.layer)
-            lanes = [i for i, term in enumerate(terms) if term == layer] or range(len(terms))
-            x0, x1 = geometry.x(finding.start), geometry.x(finding.stop)
-            for lane in lanes:
-                rect = QRectF(x0, geometry.lane_top(lane) + 1, max(x1 - x0, 2.0),
-                              geometry.lane_height - 2)  # fmt: skip
-                shade = FindingShade(rect, finding.area, finding.kind, finding.describe())
-                scene.addItem(shade)
-                self.shades.append(shade)
-        self.rendered.draw(project, list(self.traces), list(self.peaks), geometry)
+        self.layer.resize(self.view.scene().sceneRect())
+        terms = tuple(track_kind(t.kind).term for t in project.tracks)
+        if self._drawn != (id(report), terms):  # a zoom regroups nothing
+            self._drawn = (id(report), terms)
+            self.layer.show(project, report.findings)
+        if self.traces or self.rendered.items:
+            geometry = self.view.scene().lane_geometry
+            self.rendered.draw(project, list(self.traces), list(self.peaks), geometry)
 
     def close(self) -> None:
-        """Stop checking (the window is closing)."""
+        """Stop checking (the window is closing): the queued check is dropped, the running one
+        stopped, and nothing is said about either."""
+        self._closed = True
         self._timer.stop()
+        self._cancel()
         self._pool.shutdown(wait=False, cancel_futures=True)
 
 
 def _check(
-    project: Project, info: DeviceInfo, hand: Hand, render: bool
+    project: Project,
+    info: DeviceInfo,
+    hand: Hand,
+    render: bool,
+    interrupt: Callable[[], None],
 ) -> Checked | HapticTimelineError:
-    """The findings with this hand on a knob and, if `render`, what the device will output."""
+    """The findings with this hand on a knob and, if `render`, what the device will output;
+    `interrupt` raises CheckCancelled between steps once the check is stale."""
+    from timeline.limits.check import check  # scipy.signal: not on the way to the first paint
+
     try:
-        report = check(project, info, hand=hand)
+        report = check(project, info, hand=hand, interrupt=interrupt)
     except HapticTimelineError as exc:
         return exc
     if not render:
         return Checked(report)
     from timeline.limits.plot import traces
 
+    interrupt()
     try:
         drawn = tuple(traces(project, info, info.actuator, hand, "normal"))
         return Checked(report, drawn, tuple(peaks_of(t) for t in drawn))

@@ -1,6 +1,8 @@
-"""The tile inspector beside the waveform editor: a tile's length and a generator's parameters,
-with units, typed exactly or scrubbed by dragging their names; each change is one undo step and
-is felt at once while playing. A template is never changed: the first edit makes a copy."""
+"""The inspector beside the waveform editor: the selected clip, marker or track (whichever was
+chosen last; inspector_clip, _marker, _track) above the selected tile's length and a generator's
+parameters, with units, typed exactly or scrubbed by dragging their names; each change is one
+undo step and is felt at once while playing. A template is never changed: the first edit makes a
+copy."""
 
 from __future__ import annotations
 
@@ -8,7 +10,15 @@ import math
 
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QMouseEvent
-from PySide6.QtWidgets import QDoubleSpinBox, QFormLayout, QLabel, QVBoxLayout, QWidget
+from PySide6.QtWidgets import (
+    QDoubleSpinBox,
+    QFormLayout,
+    QFrame,
+    QLabel,
+    QScrollArea,
+    QVBoxLayout,
+    QWidget,
+)
 
 from timeline.edits import tile_params
 from timeline.signal.generators import GENERATORS
@@ -16,6 +26,9 @@ from timeline.tiles import GeneratorTile, SampledTile
 
 from .document import Document
 from .geometry import display_factor
+from .inspector_clip import ClipPage
+from .inspector_marker import MarkerPage
+from .inspector_track import TrackPage
 from .tile_editing import edit_tile
 
 FREQUENCIES = {"frequency", "f0", "f1", "carrier", "modulation", "bandwidth"}
@@ -70,29 +83,64 @@ class ScrubLabel(QLabel):
 
 
 class Inspector(QWidget):
-    """Shows and edits the document's selected tile."""
+    """Shows and edits the document's selected clip, marker or track, and its selected tile."""
 
     def __init__(self, doc: Document) -> None:
         super().__init__()
         self.doc = doc
+        self.pages = {"clip": ClipPage(doc), "marker": MarkerPage(doc), "track": TrackPage(doc)}
+        self.rule = QFrame()
+        self.rule.setFrameShape(QFrame.Shape.HLine)
         self.title = QLabel()
         self.form = QFormLayout()
         self.form.setContentsMargins(0, 0, 0, 0)
         self.boxes: dict[str, QDoubleSpinBox] = {}
         self.labels: dict[str, ScrubLabel] = {}
         self._shown: tuple[object, ...] = ()
-        layout = QVBoxLayout(self)
+        inner = QWidget()
+        layout = QVBoxLayout(inner)
         layout.setContentsMargins(4, 2, 4, 2)
+        for page in self.pages.values():
+            layout.addWidget(page)
+        layout.addWidget(self.rule)
         layout.addWidget(self.title)
         layout.addLayout(self.form)
         layout.addStretch(1)
-        self.setMinimumWidth(240)
+        self.area = QScrollArea()
+        self.area.setWidget(inner)
+        self.area.setWidgetResizable(True)
+        self.area.setFrameShape(QFrame.Shape.NoFrame)
+        self.area.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        outer = QVBoxLayout(self)
+        outer.setContentsMargins(0, 0, 0, 0)
+        outer.addWidget(self.area)
+        self.setMinimumWidth(260)
         doc.changed.connect(lambda _: self.refresh())
         doc.selection_changed.connect(self.refresh)
         self.refresh()
 
+    def shown_page(self) -> str | None:
+        """Which page is shown: the last chosen of clip, marker and track, if it still exists."""
+        doc = self.doc
+        there = {
+            "clip": bool(doc.selected_clips),
+            "marker": doc.selected_marker is not None,
+            "track": doc.selected_track is not None,
+        }
+        return doc.inspected if there.get(doc.inspected) else None
+
     def refresh(self) -> None:
-        """Rebuild the fields for another tile, or update their values for the same one."""
+        """Show the chosen clip, marker or track; rebuild the tile's fields for another tile, or
+        update their values for the same one."""
+        shown = self.shown_page()
+        for name, page in self.pages.items():
+            page.setVisible(name == shown)
+        if shown is not None:
+            self.pages[shown].refresh()
+        self.rule.setVisible(shown is not None)
+        self._refresh_tile()
+
+    def _refresh_tile(self) -> None:
         tile_id = self.doc.selected_tile
         tile = self.doc.project.tiles.get(tile_id) if tile_id else None
         axis = self.doc.project.axis

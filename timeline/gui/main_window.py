@@ -10,11 +10,14 @@ from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
 from PySide6.QtWidgets import (
     QApplication,
+    QDialog,
     QFileDialog,
+    QFrame,
     QGridLayout,
     QMainWindow,
     QMenu,
     QMessageBox,
+    QScrollArea,
     QSplitter,
     QWidget,
 )
@@ -27,18 +30,22 @@ from timeline.files import importing, projectfile
 from timeline.model import Project
 from timeline.plugins.file_formats import all_formats
 
-from . import variants
+from . import variants, window_state
 from .arrange import Arrange
 from .autosave import Autosaver, Recoverable, recoverable
 from .clipboard import ClipClipboard
 from .document import Document
+from .export_options import ExportOptions
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .findings_overlay import FindingsOverlay
+from .gestures.pivot import PivotGesture
+from .help import HelpMenu
 from .inspector import Inspector
 from .message_bar import MessageBar
 from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
+from .ripple import remove_rippled
 from .ruler import Ruler
 from .similarity_map import similarity_window
 from .sound_import import SoundImport
@@ -49,6 +56,13 @@ from .transport import Transport
 from .waveform_editor import WaveformEditor, read_range
 
 APP_NAME = "Haptic Timeline"
+DEFAULT_SIZE = (1400, 860)
+# splitter: its starting sizes and which panes take a resized window's room
+SPLITS = {
+    "top": ("top_split", [320, 1080], [0, 1]),
+    "bottom": ("bottom_split", [540, 250, 610], [1, 0, 0]),
+    "main": ("main_split", [560, 260], [3, 1]),
+}
 
 
 def fresh_project(axis: str = "time") -> Project:
@@ -56,6 +70,17 @@ def fresh_project(axis: str = "time") -> Project:
     project = edits.new_project(axis)
     project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
     return project
+
+
+def _scrolled(widget: QWidget) -> QScrollArea:
+    """A pane that scrolls instead of widening the window when its content grows."""
+    area = QScrollArea()
+    area.setWidget(widget)
+    area.setWidgetResizable(True)
+    area.setFrameShape(QFrame.Shape.NoFrame)
+    area.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
+    area.setMinimumWidth(120)
+    return area
 
 
 class MainWindow(QMainWindow):
@@ -83,10 +108,12 @@ class MainWindow(QMainWindow):
         self.player.position.connect(self._follow_playhead)
         self.player.finished.connect(self._play_finished)
         self.player.notice.connect(lambda text: self.messages.show_message(text, "error"))
+        self.player.warm_up_once_painted(self, lambda: self.doc.project)
         self._update_title()
         self._update_actions()
         self.transport.show_position(0.0, self.doc.project.axis)
-        self.resize(1400, 860)
+        self.resize(*DEFAULT_SIZE)
+        self.restored = window_state.restore(self)  # size, splitters, docks and hand
 
     # --- layout ----------------------------------------------------------------------------
 
@@ -112,6 +139,7 @@ class MainWindow(QMainWindow):
         self.transport.hand_changed.connect(self._hand_changed)
         self.ruler.clicked.connect(self._ruler_clicked)
         self.ruler.loop_dragged.connect(lambda: self.transport.loop.setChecked(True))
+        self.ruler.scrubbed.connect(self._scrubbed)
         self.messages.cancel_requested.connect(self.cancel_jobs)
 
         lanes = QWidget()
@@ -125,25 +153,30 @@ class MainWindow(QMainWindow):
         grid.addWidget(self.headers, 1, 0)
         grid.addWidget(self.view, 1, 1)
 
-        top = QSplitter(Qt.Orientation.Horizontal)
+        self.top_split = top = QSplitter(Qt.Orientation.Horizontal)
         top.addWidget(self.tile_palette)
         top.addWidget(lanes)
-        top.setStretchFactor(1, 1)
-        top.setSizes([320, 1080])
-        bottom = QSplitter(Qt.Orientation.Horizontal)
+        self.bottom_split = bottom = QSplitter(Qt.Orientation.Horizontal)
         bottom.addWidget(self.editor)
-        bottom.addWidget(self.inspector)
+        bottom.addWidget(_scrolled(self.inspector))
         bottom.addWidget(self.transport)
-        bottom.setSizes([540, 250, 610])
-        main = QSplitter(Qt.Orientation.Vertical)
+        self.main_split = main = QSplitter(Qt.Orientation.Vertical)
         main.addWidget(top)
         main.addWidget(bottom)
-        main.setStretchFactor(0, 3)
-        main.setSizes([560, 260])
+        for split, sizes, stretch in SPLITS.values():
+            splitter = getattr(self, split)
+            splitter.setChildrenCollapsible(False)
+            splitter.setSizes(sizes)
+            for index, factor in enumerate(stretch):
+                splitter.setStretchFactor(index, factor)
         self.setCentralWidget(main)
         self.statusBar().addWidget(self.messages, 1)
         self.statusBar().setSizeGripEnabled(False)
         self._menus()
+
+    def splitters(self) -> dict[str, QSplitter]:
+        """The window's splitters by name (what window_state remembers)."""
+        return {name: getattr(self, attribute) for name, (attribute, _, _) in SPLITS.items()}
 
     def _action(
         self,
@@ -181,6 +214,7 @@ class MainWindow(QMainWindow):
         self._action(file, "&Quit", self.close, QKeySequence.StandardKey.Quit)
 
         edit = bar.addMenu("&Edit")
+        edit.aboutToShow.connect(self._name_undo_steps)
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
         self.history_menu = edit.addMenu("&History")
@@ -214,6 +248,8 @@ class MainWindow(QMainWindow):
         for shape in ("linear", "equal-power", "exponential", "s-curve"):
             self._action(fades, shape, lambda s=shape: self.set_fade_shape(s))
         self._action(edit, "Select &all", self.select_all, QKeySequence.StandardKey.SelectAll)
+        self.ripple_action = self._action(edit, "Ri&pple edit", self.toggle_ripple)
+        self.ripple_action.setCheckable(True)
 
         view = bar.addMenu("&View")
         self._action(view, "Zoom &in", lambda: self.view.zoom(ZOOM_STEP), "Ctrl+=")
@@ -235,6 +271,7 @@ class MainWindow(QMainWindow):
         var = bar.addMenu("&Variants")
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
+        self._action(var, "&Delete the active variant", self.delete_variant)
         self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
         self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
         var.addSeparator()
@@ -243,6 +280,7 @@ class MainWindow(QMainWindow):
 
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
+        self.help = HelpMenu(self)
 
     # --- window state ----------------------------------------------------------------------
 
@@ -259,13 +297,26 @@ class MainWindow(QMainWindow):
         has = bool(self.doc.selected_clips)
         for action in self.clip_actions:
             action.setEnabled(has or action is self.split_action)
+
+    def _name_undo_steps(self) -> None:
+        """Undo and Redo say which step they take (named when the Edit menu opens, so a drag
+        does not work out a name on every mouse move)."""
         history = self.doc.history
-        self.undo_action.setText(f"&Undo {history.undo_label}".rstrip())
-        self.redo_action.setText(f"&Redo {history.redo_label}".rstrip())
+        undo, redo = (n.replace("&", "&&") for n in (history.undo_name, history.redo_name))
+        self.undo_action.setText(f"&Undo {undo}".rstrip())
+        self.redo_action.setText(f"&Redo {redo}".rstrip())
 
     def _fill_clip_menu(self, menu: QMenu) -> None:
         if not self.doc.selected_clips:
             return
+        at = self.view.menu_at
+        item = self.view.item_at(self.view.mapFromScene(at).toPointF())
+        if item is not None:
+            clip_id = item.clip.id
+            here = menu.addAction("Set &mirror line here")
+            here.setToolTip("The clip's horizontal mirror line at this level (Ctrl+Shift+click)")
+            here.triggered.connect(lambda _=False: PivotGesture(self.view, at, clip_id))
+            menu.addSeparator()
         for action in self.clip_actions:
             menu.addAction(action)
 
@@ -305,7 +356,8 @@ class MainWindow(QMainWindow):
             return
         ids = with_emphasis(self.doc.project, self.doc.selected_clips)
         if ids:
-            self.doc.apply("delete", edits.remove_clips, ids)
+            remove = remove_rippled if self.view.ripple else edits.remove_clips
+            self.doc.apply("delete", remove, ids)
 
     def invert(self) -> None:
         """Mirror the selected clips about their mirror lines."""
@@ -341,6 +393,12 @@ class MainWindow(QMainWindow):
     def select_all(self) -> None:
         self.doc.select_clips([c.id for t in self.doc.project.tracks for c in t.clips])
 
+    def toggle_ripple(self) -> None:
+        """Ripple edit on or off: trimming an end or deleting moves the later clips along."""
+        self.view.ripple = not self.view.ripple
+        self.ripple_action.setChecked(self.view.ripple)
+        self.messages.show_message("ripple edit on" if self.view.ripple else "ripple edit off")
+
     def toggle_snap(self) -> None:
         self.view.snapping = not self.view.snapping
         self.snap_action.setChecked(self.view.snapping)
@@ -361,6 +419,15 @@ class MainWindow(QMainWindow):
         """Switch to a named variant (from the Variants menu)."""
         if self.doc.apply("switch variant", edits.switch_variant, name):
             self.messages.show_message(f"now playing variant {name}")
+
+    def delete_variant(self) -> None:
+        """Delete the active variant (the only step that removes one; Ctrl+Z brings it back)."""
+        name = self.doc.project.active_variant
+        if not name:
+            self.messages.show_message("no variant is active: switch to the one to delete", "error")
+            return
+        if self.doc.apply(f"delete variant {name}", edits.remove_variant, name):
+            self.messages.show_message(f"deleted variant {name} (Ctrl+Z brings it back)")
 
     def _range_dropped(self, tab: str, mime) -> None:
         tile_id, a, b = read_range(mime)
@@ -407,6 +474,19 @@ class MainWindow(QMainWindow):
             self.player.stop()
             self.play_stop(at)
         self.transport.show_playing(self.player.playing)
+
+    def _scrubbed(self, u: float) -> None:
+        """A scrub let go while playing goes on from there: a time project plays on from that
+        time, a position project's knob starts again at that angle (felt under the hand)."""
+        if not self.player.playing:
+            return
+        project = self.doc.project
+        if project.axis == "position":
+            self.player.play(project, origin=u)
+            self.transport.show_playing(self.player.playing)
+        else:
+            self.player.stop()
+            self.play_stop(u)
 
     def _ruler_clicked(self, u: float) -> None:
         self.transport.show_position(u, self.doc.project.axis)
@@ -550,12 +630,16 @@ class MainWindow(QMainWindow):
         path, _ = QFileDialog.getSaveFileName(
             self, "Export", self.dialog_folder(), f"Exportable ({self._extensions('writes')})"
         )
-        if path:
-            self.export_to(Path(path))
+        if not path:
+            return
+        dialog = ExportOptions(self.doc.project, Path(path), self)
+        if dialog.exec() == QDialog.DialogCode.Accepted:
+            self.export_to(Path(path), **dialog.options())
 
-    def export_to(self, path: Path) -> FileJob:
-        """Export in the background; the file appears only when the export has finished."""
-        job = export_job(self.doc.project, path)
+    def export_to(self, path: Path, **options: Any) -> FileJob:
+        """Export in the background (with export_project's options: `rate`, `fixed_point`); the
+        file appears only when the export has finished."""
+        job = export_job(self.doc.project, path, **options)
         self.run_job(job, f"exporting {path.name}…", lambda tmp: self._exported(tmp, path))
         return job
 
@@ -645,6 +729,7 @@ class MainWindow(QMainWindow):
         if not self.confirm_discard():
             event.ignore()
             return
+        window_state.save(self)
         self.player.close()
         self.findings.close()
         self.autosaver.discard()

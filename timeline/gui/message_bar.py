@@ -1,13 +1,47 @@
-"""The message bar: status and errors in one line at the bottom, never a modal pop-up."""
+"""The message bar: status and errors in one line at the bottom, never a modal pop-up.
+
+A message longer than the bar is shown up to an ellipsis with the whole sentence in the tooltip
+(one line always, so the lanes never jump while a message shows); `text` is always the whole.
+"""
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtCore import QSize, Qt, QTimer, Signal
+from PySide6.QtGui import QResizeEvent
 from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QWidget
 
 COLOURS = {"info": "#1f1f1f", "error": "#b00020", "hint": "#6b6b6b"}
 INFO_SECONDS = 6
 HINT = "Drag a tile from the palette onto a track · Space plays · Ctrl+Z undoes"
+
+
+class ElidedLabel(QLabel):
+    """One line of text that ends in "…" when it does not fit; the whole is in its tooltip."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.whole = ""
+
+    def set_whole(self, text: str) -> None:
+        self.whole = text
+        self._fit()
+
+    def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 - Qt's name
+        super().resizeEvent(event)
+        self._fit()
+
+    def minimumSizeHint(self) -> QSize:  # noqa: N802 - Qt's name
+        """Any width will do: the text is elided, never the window widened."""
+        return QSize(0, super().minimumSizeHint().height())
+
+    def sizeHint(self) -> QSize:  # noqa: N802 - Qt's name
+        return QSize(0, super().sizeHint().height())
+
+    def _fit(self) -> None:
+        metrics = self.fontMetrics()
+        shown = metrics.elidedText(self.whole, Qt.TextElideMode.ElideRight, self.width())
+        self.setText(shown)
+        self.setToolTip(self.whole if shown != self.whole else "")
 
 
 class MessageBar(QWidget):
@@ -23,7 +57,7 @@ class MessageBar(QWidget):
         self.setMinimumHeight(28)
         layout = QHBoxLayout(self)
         layout.setContentsMargins(8, 2, 8, 2)
-        self.label = QLabel("")
+        self.label = ElidedLabel()
         self.label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
         self.action = QPushButton()
         self.action.hide()
@@ -50,12 +84,13 @@ class MessageBar(QWidget):
 
     @property
     def text(self) -> str:
-        return self.label.text()
+        """The whole message (the bar may show it elided)."""
+        return self.label.whole
 
     def show_message(self, text: str, level: str = "info") -> None:
         """Show a sentence; info fades after a few seconds, errors stay until the next message."""
         self.history.append((text, level))
-        self.label.setText(text)
+        self.label.set_whole(text)
         self.label.setStyleSheet(f"color: {COLOURS.get(level, COLOURS['info'])};")
         if level == "info":
             self._clear.start(INFO_SECONDS * 1000)
@@ -64,7 +99,7 @@ class MessageBar(QWidget):
 
     def show_hint(self) -> None:
         """Between messages, say in grey what to do next (not recorded in the history)."""
-        self.label.setText(HINT)
+        self.label.set_whole(HINT)
         self.label.setStyleSheet(f"color: {COLOURS['hint']};")
 
     def offer(self, text: str, button: str, callback) -> None:

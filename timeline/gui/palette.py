@@ -1,4 +1,8 @@
-"""The tile palette: tabs (Templates, Scratch, user tabs) of tile thumbnails to drag onto tracks."""
+"""The tile palette: tabs (Templates, Scratch, user tabs) of tile thumbnails to drag onto tracks.
+
+A tile is renamed in place (F2, or double-click its name); a range dragged from the waveform
+editor onto a tab becomes a new tile there, and a tile dragged onto another tab is shown there
+too."""
 
 from __future__ import annotations
 
@@ -22,6 +26,7 @@ from PySide6.QtWidgets import (
 )
 
 from timeline import edits
+from timeline.edits.naming import unique_tile_name
 from timeline.errors import HapticTimelineError
 from timeline.files import exporting, importing
 from timeline.model import Project
@@ -29,11 +34,12 @@ from timeline.tiles import Tile
 
 from .document import Document
 from .geometry import axis_text
-from .gestures.palette_drop import tile_mime
+from .gestures.palette_drop import dropped_tile, tile_mime
 from .thumbnails import SIZE, thumbnail
 
 RANGE_MIME = "application/x-haptic-timeline-range"
 SCALES = (1.0, 0.9, 0.8, 0.7, 0.6)  # thumbnail sizes tried, largest first, to fit every tile
+NAME_ROLE = Qt.ItemDataRole.UserRole + 1  # the tile's name as shown, to tell a rename
 LABEL_ROOM = (10, 28)  # grid cell room around a thumbnail for spacing and its name
 TILE_FILTERS = {
     "MATLAB (*.mat)": ".mat",
@@ -44,9 +50,12 @@ TILE_FILTERS = {
 
 
 class TileList(QListWidget):
-    """One tab's tiles as thumbnails; dragging one carries its tile id."""
+    """One tab's tiles as thumbnails; dragging one carries its tile id; F2 or a double-click
+    renames one."""
 
     range_dropped = Signal(object)
+    tile_dropped = Signal(str)  # a tile id dragged here from another tab
+    renamed = Signal(str, str)  # tile id, new name
 
     def __init__(self) -> None:
         super().__init__()
@@ -58,8 +67,18 @@ class TileList(QListWidget):
         self.setWordWrap(True)
         self.setDragEnabled(True)
         self.setAcceptDrops(True)
+        self.viewport().setAcceptDrops(True)  # drops land on the viewport, not the list
         self.setDragDropMode(QAbstractItemView.DragDropMode.DragDrop)
+        self.setDefaultDropAction(Qt.DropAction.CopyAction)
         self.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
+        triggers = QAbstractItemView.EditTrigger
+        self.setEditTriggers(triggers.EditKeyPressed | triggers.DoubleClicked)
+        self.itemChanged.connect(self._changed)
+
+    def _changed(self, item: QListWidgetItem) -> None:
+        name = item.text().strip()
+        if name and name != item.data(NAME_ROLE):
+            self.renamed.emit(item.data(Qt.ItemDataRole.UserRole), name)
 
     def _set_scale(self, scale: float) -> None:
         self.scale = scale
@@ -91,22 +110,37 @@ class TileList(QListWidget):
     def mimeData(self, items):  # noqa: N802  # pyright: ignore[reportIncompatibleMethodOverride]
         return tile_mime(items[0].data(Qt.ItemDataRole.UserRole)) if items else None
 
+    def _wanted(self, mime) -> bool:
+        """A range of a tile, or a tile from another tab (one from this tab has its place)."""
+        if mime.hasFormat(RANGE_MIME):
+            return True
+        tile_id = dropped_tile(mime)
+        return tile_id is not None and tile_id not in self.tile_ids()
+
+    def tile_ids(self) -> list[str]:
+        return [self.item(i).data(Qt.ItemDataRole.UserRole) for i in range(self.count())]
+
     def dragEnterEvent(self, event) -> None:
-        if event.mimeData().hasFormat(RANGE_MIME):
-            event.acceptProposedAction()
+        if self._wanted(event.mimeData()):
+            event.setDropAction(Qt.DropAction.CopyAction)
+            event.accept()
         else:
             event.ignore()
 
     def dragMoveEvent(self, event) -> None:
-        if event.mimeData().hasFormat(RANGE_MIME):
-            event.acceptProposedAction()
-        else:
-            event.ignore()
+        self.dragEnterEvent(event)
 
     def dropEvent(self, event) -> None:
-        if event.mimeData().hasFormat(RANGE_MIME):
-            self.range_dropped.emit(event.mimeData())
-            event.acceptProposedAction()
+        mime = event.mimeData()
+        if not self._wanted(mime):
+            event.ignore()
+            return
+        event.setDropAction(Qt.DropAction.CopyAction)
+        event.accept()
+        if mime.hasFormat(RANGE_MIME):
+            self.range_dropped.emit(mime)
+        else:
+            self.tile_dropped.emit(dropped_tile(mime))
 
 
 class Palette(QWidget):
@@ -187,6 +221,8 @@ class Palette(QWidget):
             tiles.range_dropped.connect(
                 lambda mime, name=tab.name: self.range_dropped.emit(name, mime)
             )
+            tiles.tile_dropped.connect(lambda tile_id, name=tab.name: self.place(tile_id, name))
+            tiles.renamed.connect(self.rename_tile)
             tiles.itemClicked.connect(
                 lambda item: self.doc.select_tile(item.data(Qt.ItemDataRole.UserRole))
             )
@@ -194,7 +230,11 @@ class Palette(QWidget):
                 tile = project.tiles[tile_id]
                 item = QListWidgetItem(self._icon(tile), tile.name)
                 item.setData(Qt.ItemDataRole.UserRole, tile_id)
-                item.setToolTip(f"{tile.name}: {axis_text(tile.duration, project.axis, '.3g')}")
+                item.setData(NAME_ROLE, tile.name)
+                if tab.role != "templates":  # a template keeps its name, as its shape
+                    item.setFlags(item.flags() | Qt.ItemFlag.ItemIsEditable)
+                length = axis_text(tile.duration, project.axis, ".3g")
+                item.setToolTip(f"{tile.name}: {length} (F2 or double-click the name to rename)")
                 tiles.addItem(item)
             tiles.fit_grid()
             self.tabs.addTab(tiles, tab.name)
@@ -230,6 +270,19 @@ class Palette(QWidget):
         if self.doc.apply("rename palette tab", edits.rename_tab, old, new):
             self.name.clear()
             self.tabs.setCurrentWidget(self.tile_list(new))
+
+    def rename_tile(self, tile_id: str, name: str) -> None:
+        """Rename a tile (one undo step); every clip of it shows the new name."""
+        old = self.doc.project.tile(tile_id).name
+        if self.doc.apply(f"rename tile {old} to {name}", edits.rename_tile, tile_id, name):
+            return
+        self._shown = ()  # refused: show the old name again
+        self.refresh()
+
+    def place(self, tile_id: str, tab: str) -> None:
+        """Show a tile dragged from another tab in this tab too (one undo step)."""
+        name = self.doc.project.tile(tile_id).name
+        self.doc.apply(f"put {name} in {tab}", edits.place_tile, tile_id, tab)
 
     def remove_tab(self) -> None:
         """Remove the current user tab (its tiles stay in the library)."""
@@ -280,6 +333,7 @@ class Palette(QWidget):
         def add_all(project: Project) -> tuple[Project, list[str]]:
             ids = []
             for tile in tiles:
+                tile = tile.with_name(unique_tile_name(project, tile.name))
                 project, tile_id = edits.add_tile(project, tile, tab)
                 ids.append(tile_id)
             return project, ids

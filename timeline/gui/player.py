@@ -6,28 +6,41 @@ any other hand plays until Stop (HOLD_SECONDS at most). An edit rebuilds the tab
 plays them from its next 50 ms chunk; the playhead and the scope follow the knob's table angle.
 The sim simulates a sweep faster than real time, so the player holds each chunk's telemetry
 until its time has come (and stops the sweep there).
+
+The stream counts blocks handed over later than the lead (what a real knob feels as an
+underrun); the player names them in a notice while playing and when the play ends. Once the
+window has painted, `warm_up` loads the device's compiled code and renders the first chunk
+ahead on a background thread, so the first block goes out within a few ms of Play.
 """
 
 from __future__ import annotations
 
+import sys
 import threading
 import time
 from collections import deque
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 import numpy as np
-from PySide6.QtCore import QObject, QTimer, Signal
+from PySide6.QtCore import QEvent, QObject, QTimer, Signal
 
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
-from timeline.plugins.device_protocol import Device, Hand, LiveTelemetry, device_names, open_device
+from timeline.plugins import discovery
+from timeline.plugins.device_protocol import Device, Hand, Lateness, LiveTelemetry, open_device
 from timeline.rendering import playback
+from timeline.rendering.mixer import Mixer
 from timeline.rendering.sound_out import SoundOut
 
 from .job_errors import unexpected
-from .live_stream import LiveStream, LiveTables
+from .live_stream import CHUNK_SECONDS, LiveStream, LiveTables
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
+LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this often
+# While playing, a thread busy in Python (the GUI's) hands the interpreter lock over after this
+# long instead of CPython's 5 ms, so the playing thread, which needs it for a moment every
+# 10 ms block, waits less for it.
+SWITCH_SECONDS = 0.001
 
 
 class _Stopped(Exception):
@@ -65,11 +78,19 @@ class Player(QObject):
         self._poll.setInterval(33)
         self._poll.timeout.connect(self._drain)
         self.sound = SoundOut()  # the source sound (audio tracks) heard with the haptics
+        self._mixer = Mixer(cache_bytes=256 * 2**20)  # kept between plays, warmed ahead
+        self._opening = threading.Lock()
+        self._warm: threading.Thread | None = None
+        self._warm_source: Callable[[], Project] | None = None  # until the window first paints
+        self._late_named = (0, 0.0)  # late blocks already named, and when
+        self._switch = 0.0  # the interpreter's switch interval before playing (0: not playing)
 
     @staticmethod
     def devices() -> list[str]:
-        """Device plugins found through entry points."""
-        return device_names()
+        """Device plugins' names as their entry points register them, none loaded: the sim's
+        compiled loop (numba) is not imported before the window's first paint; a plugin that
+        cannot load says so when chosen (open_device)."""
+        return sorted(discovery.names(discovery.DEVICES))
 
     @property
     def playing(self) -> bool:
@@ -78,15 +99,55 @@ class Player(QObject):
     def choose_device(self, name: str) -> None:
         """Use another device from the next Play on."""
         self.stop()
-        if self.device is not None:
-            self.device.close()
-            self.device = None
-        self.device_name = name
+        with self._opening:  # not while a warm-up opens the old one
+            if self.device is not None:
+                self.device.close()
+                self.device = None
+            self.device_name = name
 
     def _open(self) -> Device:
-        if self.device is None:
-            self.device = open_device(self.device_name)
-        return self.device
+        with self._opening:
+            if self.device is None:
+                self.device = open_device(self.device_name)
+            return self.device
+
+    def warm_up_once_painted(self, window: QObject, project: Callable[[], Project]) -> None:
+        """Warm up (below) on the project of the moment right after `window` first paints, so
+        the warm-up never delays the first paint."""
+        self._warm_source = project
+        window.installEventFilter(self)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
+        if event.type() == QEvent.Type.Paint and self._warm_source is not None:
+            watched.removeEventFilter(self)
+            source, self._warm_source = self._warm_source, None
+            QTimer.singleShot(0, self, lambda: self.warm_up(source()))
+        return False
+
+    def warm_up(self, project: Project, start: float = 0.0) -> None:
+        """On a background thread: open the device, load its compiled code and render the
+        project's first chunk from `start` into the mixer kept for the next play."""
+        if self._warm is None or not self._warm.is_alive():
+            self._warm = threading.Thread(
+                target=self._warm_up, args=(project, start), daemon=True, name="player warm-up"
+            )
+            self._warm.start()
+
+    def _warm_up(self, project: Project, start: float) -> None:
+        try:
+            device = self._open()
+            device.warm_up()
+            if project.axis == "time" and project.duration > start:
+                stop = min(project.duration, start + CHUNK_SECONDS)
+                stream = LiveStream(project, device.info.rate, start, stop, mixer=self._mixer)
+                stream.render(project, start, stop)
+        except Exception:  # noqa: BLE001 - a failed warm-up costs only time: Play says why
+            return
+
+    @property
+    def lateness(self) -> Lateness | None:
+        """Late blocks of the current (or last) time-mode play; None for a position play."""
+        return None if self.stream is None else self.stream.lateness.counts()
 
     def play(
         self,
@@ -103,6 +164,7 @@ class Player(QObject):
         by default).
         """
         self.stop()
+        asked = time.perf_counter()
         try:
             device = self._open()
             self.stream = self.tables = None
@@ -116,16 +178,23 @@ class Player(QObject):
             else:
                 if stop <= start:
                     raise HapticTimelineError("nothing to play: the project has no clips there")
-                self.stream = LiveStream(project, device.info.rate, start, stop, loop, tracks)
+                warming = self._warm is not None and self._warm.is_alive()
+                mixer = None if warming else self._mixer  # one thread per mixer at a time
+                self.stream = LiveStream(
+                    project, device.info.rate, start, stop, loop, tracks, mixer=mixer, asked=asked
+                )
                 self.stream.on_block = self._at
                 program, hand = self.stream, self.hand
         except HapticTimelineError as exc:
             self.finished.emit(str(exc))
             return
         self._outcome = None
+        self._late_named = (0, 0.0)
         self._halt.clear()
         self._started = time.perf_counter()
         self._thread = threading.Thread(target=self._run, args=(device, program, hand), daemon=True)
+        self._switch = self._switch or sys.getswitchinterval()
+        sys.setswitchinterval(SWITCH_SECONDS)
         self._thread.start()
         self._poll.start()
         if self.stream is not None:
@@ -172,11 +241,37 @@ class Player(QObject):
                 self._angle = self._position
             self.position.emit(self._position)
             self._position = None
-        if self._outcome is not None and not self.playing:
-            outcome, self._outcome = self._outcome, None
+        ended = self._outcome is not None and not self.playing
+        late = self._late_sentence(ended)
+        if ended:
+            outcome, self._outcome = self._outcome or "", None
+            self._restore_switch()
             self._poll.stop()
             self.sound.stop()
+            if late and outcome:
+                outcome = f"{outcome}; {late}"
+            elif late:
+                self.notice.emit(late)
             self.finished.emit(outcome)
+        elif late:
+            self.notice.emit(late)
+
+    def _restore_switch(self) -> None:
+        if self._switch:
+            sys.setswitchinterval(self._switch)
+            self._switch = 0.0
+
+    def _late_sentence(self, ended: bool) -> str:
+        """The late blocks to name now: new ones (at most once a second), or all at the end."""
+        counts = self.lateness
+        if counts is None or not counts.late:
+            return ""
+        named, when = self._late_named
+        now = time.perf_counter()
+        if not ended and (counts.late == named or now - when < LATE_NOTICE_SECONDS):
+            return ""
+        self._late_named = (counts.late, now)
+        return counts.sentence()
 
     @property
     def angle(self) -> float | None:
@@ -207,6 +302,7 @@ class Player(QObject):
         """Stop, release the device and report nothing more (the window is closing)."""
         self.stop()
         self._poll.stop()
+        self._restore_switch()
         if self.device is not None:
             self.device.close()
             self.device = None

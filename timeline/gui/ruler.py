@@ -1,7 +1,9 @@
 """The ruler above the lanes: seconds, or degrees in position mode, with markers and the loop.
 
 Click to place the playhead and cursor; drag to set the loop region (REAPER's ruler drag); drag
-a marker's flag to move it; right-click a marker to rename or delete it, or the loop to clear it.
+the playhead's head to scrub; click a marker's flag to show it in the inspector, drag it to move
+it, double-click it to rename it in place; right-click a marker to rename or delete it, or the
+loop to clear it.
 """
 
 from __future__ import annotations
@@ -11,16 +13,18 @@ from collections.abc import Callable
 
 from PySide6.QtCore import QPointF, QRectF, Qt, Signal
 from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPen, QPolygonF
-from PySide6.QtWidgets import QInputDialog, QMenu, QWidget
+from PySide6.QtWidgets import QLineEdit, QMenu, QWidget
 
 from timeline.edits import markers
 
 from .geometry import axis_text, display_factor, display_unit, format_tick, nice_step
+from .inspector_marker import move_marker_tracked
 from .timeline_view import TimelineView
 
 HEIGHT = 40
 TICKS_TOP = 20  # marker flags and the loop band above, ticks and labels below
 FLAG_PX = 6.0
+PLAYHEAD_GRAB_PX = 5.0  # a press this near the playhead (below the flags) scrubs it
 LOOP_COLOUR = QColor(56, 160, 90, 70)
 MARKER_COLOUR = QColor("#c07000")
 
@@ -30,6 +34,7 @@ class Ruler(QWidget):
 
     clicked = Signal(float)  # axis position the playhead and cursor moved to
     loop_dragged = Signal()
+    scrubbed = Signal(float)  # where a scrub of the playhead was let go
 
     def __init__(self, view: TimelineView) -> None:
         super().__init__()
@@ -38,8 +43,11 @@ class Ruler(QWidget):
         self.setFixedHeight(HEIGHT)
         self.setMouseTracking(True)
         self.ask_name: Callable[[str], str | None] = self._ask_name
+        self.name_edit: QLineEdit | None = None  # the in-place rename box, while open
+        self._renaming: int | None = None
         self._press: float | None = None  # x where the left button went down
         self._marker: int | None = None  # index of the marker being dragged
+        self._scrub = False  # dragging the playhead rather than a loop region
         self._key: object = None
         self._base = None
         view.zoomed.connect(self.update)
@@ -113,7 +121,11 @@ class Ruler(QWidget):
         pos = event.position()
         self._press = pos.x()
         self._marker = self.marker_at(pos.x(), pos.y())
+        playhead = self.x_of(self.view.scene().playhead_u)
+        self._scrub = self._marker is None and abs(pos.x() - playhead) <= PLAYHEAD_GRAB_PX
         self._key, self._base = object(), self.doc.project
+        if self._marker is not None:
+            self.doc.select_marker(self._marker)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:
         pos = event.position()
@@ -124,11 +136,16 @@ class Ruler(QWidget):
         if abs(pos.x() - self._press) < 3:
             return
         u0, u = self.u_of(self._press), self.u_of(pos.x())
+        if self._scrub:
+            self.place(u)  # the playhead, the cursor and the readout follow
+            return
         if self._marker is not None:
-            self.doc.apply(
-                "move marker", markers.move_marker, self._marker, u,
+            index = self.doc.apply(
+                "move marker", move_marker_tracked, self._marker, u,
                 base=self._base, merge_key=self._key,
             )  # fmt: skip
+            if index is not None:
+                self.doc.select_marker(index)
             self.doc.message.emit(f"marker at {axis_text(u, self.doc.project.axis)}", "info")
         else:
             self.doc.apply(
@@ -149,6 +166,10 @@ class Ruler(QWidget):
         if event.button() != Qt.MouseButton.LeftButton or self._press is None:
             return
         press, self._press = self._press, None
+        if self._scrub and abs(event.position().x() - press) >= 3:
+            self._scrub = False
+            self.scrubbed.emit(self.u_of(event.position().x()))
+            return
         if abs(event.position().x() - press) >= 3:
             return
         u = self.u_of(event.position().x())
@@ -179,7 +200,7 @@ class Ruler(QWidget):
         i = self.marker_at(x, y)
         if i is not None:
             name = self.doc.project.markers[i].name
-            menu.addAction(f"Rename marker {name}…", lambda: self.rename(i))
+            menu.addAction(f"Rename marker {name}", lambda: self.rename(i))
             menu.addAction(
                 f"Delete marker {name}",
                 lambda: self.doc.apply("delete marker", markers.remove_marker, i),
@@ -191,14 +212,54 @@ class Ruler(QWidget):
         return menu
 
     def rename(self, index: int) -> None:
-        """Ask for a marker's new name and apply it (one undo step)."""
+        """Rename a marker: in place, in a box over its flag (Enter applies it, one undo step;
+        Escape or clicking elsewhere leaves it)."""
+        self._renaming = index
+        self.doc.select_marker(index)
         name = self.ask_name(self.doc.project.markers[index].name)
         if name:
-            self.doc.apply("rename marker", markers.rename_marker, index, name)
+            self._apply_name(index, name)
+
+    def _apply_name(self, index: int, name: str) -> None:
+        old = self.doc.project.markers[index].name
+        if name.strip() and name.strip() != old:
+            self.doc.apply(f"rename marker {old} to {name.strip()}", markers.rename_marker,
+                           index, name)  # fmt: skip
 
     def _ask_name(self, current: str) -> str | None:
-        name, ok = QInputDialog.getText(self, "Marker", "Name:", text=current)
-        return name if ok else None
+        """Open the in-place box over the flag; it applies the name itself on Enter."""
+        index = self._renaming
+        if index is None:
+            return None
+        self._close_name_edit()
+        box = self.name_edit = QLineEdit(current, self)
+        box.selectAll()
+        box.setToolTip("the marker's name: Enter renames it, Escape leaves it")
+        box.move(int(self.x_of(self.doc.project.markers[index].at) + FLAG_PX + 1), 0)
+        box.resize(max(80, box.sizeHint().width()), TICKS_TOP)
+        box.returnPressed.connect(lambda: self._finish_name(index))
+        box.editingFinished.connect(self._close_name_edit)
+        box.show()
+        box.setFocus()
+        return None
+
+    def _finish_name(self, index: int) -> None:
+        box = self.name_edit
+        if box is not None and index < len(self.doc.project.markers):
+            self._apply_name(index, box.text())
+        self._close_name_edit()
+
+    def _close_name_edit(self) -> None:
+        box, self.name_edit = self.name_edit, None
+        if box is not None:
+            box.hide()
+            box.deleteLater()
+
+    def keyPressEvent(self, event) -> None:
+        if event.key() == Qt.Key.Key_Escape:
+            self._close_name_edit()
+            return
+        super().keyPressEvent(event)
 
     def _tip(self, index: int | None, x: float) -> str:
         axis = self.doc.project.axis
@@ -208,6 +269,8 @@ class Ruler(QWidget):
                 f"marker {m.name} at {axis_text(m.at, axis)}: drag to move, "
                 "double-click to rename, right-click to delete"
             )
+        if abs(x - self.x_of(self.view.scene().playhead_u)) <= PLAYHEAD_GRAB_PX:
+            return "the playhead: drag it to scrub (playing goes on from where you let go)"
         return (
             f"{axis_text(self.u_of(x), axis)}: click to move the playhead, "
             "drag to set the loop region"

@@ -35,10 +35,10 @@ from PySide6.QtWidgets import (
 from timeline.analysis import DEFAULTS, AnalysisSettings
 from timeline.edits.placement import into_gap
 from timeline.errors import HapticTimelineError, SettingsError
-from timeline.files.convert import ConvertedSound, analyse_sound_file, place_converted
 from timeline.gui.file_jobs import FileJob
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the analysis (numba) loads with the first sound converted, not at start-up
+    from timeline.files.convert import ConvertedSound
     from timeline.gui.main_window import MainWindow
 
 SOUND_EXTENSIONS = "*.wav *.flac *.ogg *.aif *.aiff *.mp3 *.opus"
@@ -79,6 +79,13 @@ LABELS = {
 
 
 Field = QCheckBox | QSpinBox | QDoubleSpinBox  # one analysis setting's editor
+
+
+def _analyse(path: Path, settings: AnalysisSettings, progress) -> ConvertedSound:  # noqa: ANN001
+    """Worker thread: a sound file's analysis, placed nowhere yet."""
+    from timeline.files.convert import analyse_sound_file
+
+    return analyse_sound_file(path, settings, progress=progress)
 
 
 def _label(name: str) -> str:
@@ -178,7 +185,6 @@ class SoundImport(QObject):
         self.dock = QDockWidget("Sound analysis", window)
         self.dock.setObjectName("soundAnalysisDock")
         self.dock.setWidget(self.panel)
-        self.dock.setMinimumWidth(360)
         window.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, self.dock)
         self.dock.hide()
         self._drop_modifiers = Qt.KeyboardModifier.NoModifier
@@ -226,7 +232,7 @@ class SoundImport(QObject):
         for path in paths:
             job = FileJob(
                 f"Import of {path.name} as haptic",
-                lambda progress, p=path: analyse_sound_file(p, settings, progress=progress),
+                lambda progress, p=path: _analyse(p, settings, progress),
             )
             self.window.run_job(
                 job, f"analysing {path.name}…", lambda found: self._analysed(found, track_id, at)
@@ -238,6 +244,8 @@ class SoundImport(QObject):
                      None)  # fmt: skip
         try:
             before = {c.id for t in doc.project.tracks for c in t.clips}
+            from timeline.files.convert import place_converted
+
             project = place_converted(doc.project, found, at=at, drive_track=drive)
             new = [c.id for t in project.tracks for c in t.clips if c.id not in before]
             project = into_gap(project, new, at)

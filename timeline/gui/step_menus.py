@@ -11,13 +11,13 @@ SHOWN = 40  # the newest steps listed (older ones stay reachable by undo)
 
 
 def fill_history(menu: QMenu, doc: Document) -> None:
-    """Refill the menu from the document's history."""
+    """Refill the menu from the document's history, each step named by what it changed."""
     menu.clear()
     group = QActionGroup(menu)
-    labels = doc.history.labels
-    first = max(0, len(labels) - SHOWN)
-    for index in range(len(labels) - 1, first - 1, -1):
-        action = menu.addAction(f"{index}. {labels[index]}")
+    names = doc.history.names
+    first = max(0, len(names) - SHOWN)
+    for index in range(len(names) - 1, first - 1, -1):
+        action = menu.addAction(f"{index}. {names[index].replace('&', '&&')}")
         action.setCheckable(True)
         action.setChecked(index == doc.history.index)
         action.setToolTip("after this step" if index else "as opened")

@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
-from PySide6.QtCore import QLineF, QRect, QRectF
+from PySide6.QtCore import QLineF, QPointF, QRect, QRectF
 from PySide6.QtGui import QColor, QPainter, QPen
-from PySide6.QtWidgets import QGraphicsLineItem, QGraphicsScene
+from PySide6.QtWidgets import (
+    QGraphicsLineItem,
+    QGraphicsScene,
+    QGraphicsSceneHelpEvent,
+    QToolTip,
+)
 
 from timeline.edits.placement import overlaps
 from timeline.model import Clip, Project, Track
@@ -16,13 +21,17 @@ from timeline.plugins.track_kinds import track_kind
 from timeline.tiles import Tile
 
 from .clip_item import ClipItem
+from .clip_layer import ClipLayer, LaneClips
 from .geometry import Geometry, display_factor, nice_step
+from .lane_scale import visible_lanes
 
 LANE_COLOURS = (QColor("#f4f4f2"), QColor("#ebebe8"))
+LANE_EDGE = QColor("#c8c8c4")
+GRID_COLOUR = QColor(0, 0, 0, 25)
 EXTRA_LANE_ROOM = 40
 
-# zoom (px per unit), lane height, project rate and whether the track is muted
-TrackView = tuple[float, float, float, bool]
+# lane height, project rate and whether the track is muted (the zoom changes no clip)
+TrackView = tuple[float, float, bool]
 
 
 @dataclass(frozen=True)
@@ -34,6 +43,7 @@ class _TrackShown:
     selected: frozenset[str]
     view: TrackView
     tiles: dict[str, Tile]  # tile id -> the tile object its clips were drawn from
+    clips: LaneClips  # its clips in start order, for the clip layer
 
     @property
     def clip_ids(self) -> set[str]:
@@ -58,11 +68,21 @@ class _TrackShown:
 
 
 class TimelineScene(QGraphicsScene):
-    """Lanes and clips; `sync` updates only what changed, so a drag never rebuilds the scene."""
+    """Lanes and clips; `sync` updates only what changed, so a drag never rebuilds the scene.
+
+    The clips are painted by one item (clip_layer.ClipLayer); `items_by_clip` holds what each
+    clip shows. Tooltips come from `tip_sources` (the findings' shading) before the items and
+    the clips under the mouse.
+    """
 
     def __init__(self, geometry: Geometry) -> None:
         super().__init__()
+        self.setItemIndexMethod(QGraphicsScene.ItemIndexMethod.NoIndex)  # a few items, moving
         self.lane_geometry = geometry
+        self.layer = ClipLayer(geometry)
+        self.addItem(self.layer)
+        self.tip_sources: list[Callable[[QPointF], str]] = []
+        self._backdrop: object = None  # what the lanes' background was last drawn from
         self.items_by_clip: dict[str, ClipItem] = {}
         self._shown: dict[str, _TrackShown] = {}  # track id -> what its items show
         self._tiles: object = None  # the tile library the items were last updated from
@@ -88,7 +108,7 @@ class TimelineScene(QGraphicsScene):
         same; its items are then left alone, so a drag on 20,000 clips updates a few items.
         """
         self.project, self.selection = project, set(selection)
-        view = (self.lane_geometry.px_per_unit, self.lane_geometry.lane_height, project.rate)
+        view = (self.lane_geometry.lane_height, project.rate)
         # edits that leave the tile library alone share its map, so its tiles need no check
         tiles = None if project.tiles is self._tiles else project.tiles
         self._tiles = project.tiles
@@ -115,6 +135,7 @@ class TimelineScene(QGraphicsScene):
         for track_id in self._shown.keys() - shown.keys():
             self._drop_items(self._shown[track_id].clip_ids, track_id)
         self._shown = shown
+        self.layer.lanes = {lane: shown[t.id].clips for lane, t in enumerate(project.tracks)}
         self.refit()
 
     def _show_track(
@@ -147,10 +168,10 @@ class TimelineScene(QGraphicsScene):
             if tile is None:
                 tile = tiles[clip.tile_id] = project.tile(clip.tile_id)
             item = self.items_by_clip.get(clip.id)
+            before_rect = None if item is None else item.sceneBoundingRect()
             if item is None:
                 item = self.items_by_clip[clip.id] = ClipItem(self.lane_geometry, clip, tile)
-                self.addItem(item)
-            item.update_from(
+            changed = item.update_from(
                 clip,
                 tile,
                 track.id,
@@ -162,15 +183,20 @@ class TimelineScene(QGraphicsScene):
                 covered.get(clip.id, ()),
                 project.axis,
             )
+            if changed:
+                self.update(item.sceneBoundingRect())
+                if before_rect is not None:
+                    self.update(before_rect)
         selected = frozenset(c.id for c in track.clips if c.id in self.selection)
-        return _TrackShown(track, lane, selected, view, tiles)
+        clips = LaneClips([self.items_by_clip[c.id] for c in track.clips])
+        return _TrackShown(track, lane, selected, view, tiles, clips)
 
     def _drop_items(self, clip_ids: Iterable[str], track_id: str) -> None:
         """Remove the items of clips that left a track (unless another track now shows them)."""
         for clip_id in clip_ids:
             item = self.items_by_clip.get(clip_id)
             if item is not None and item.track_id == track_id:
-                self.removeItem(self.items_by_clip.pop(clip_id))
+                self.update(self.items_by_clip.pop(clip_id).sceneBoundingRect())
 
     def refit(self) -> None:
         """Size the scene to the lanes and the project (plus room to drag past the end)."""
@@ -181,9 +207,40 @@ class TimelineScene(QGraphicsScene):
         )
         height = g.lane_top(lanes) + EXTRA_LANE_ROOM
         self.setSceneRect(QRectF(0, 0, width, height))
+        self.layer.resize(self.sceneRect())
         self.set_playhead(self.playhead_u)
         self.set_cursor(self.cursor_u)
-        self.update()
+        backdrop = self._backdrop_key()
+        if backdrop != self._backdrop:  # the lanes, grid, loop or scales changed: all of it
+            self._backdrop = backdrop
+            self.update()
+
+    def _backdrop_key(self) -> tuple[object, ...]:
+        """What the background, the lanes' scales and the clip layer's zoom depend on."""
+        g, project = self.lane_geometry, self.project
+        if project is None:
+            return (g.px_per_unit, g.lane_height)
+        tracks = tuple((t.kind, t.full_scale, t.name) for t in project.tracks)
+        return (g.px_per_unit, g.lane_height, tracks, project.loop, project.axis)
+
+    def clip_at(self, pos: QPointF) -> ClipItem | None:
+        """The clip under a scene position (the one drawn on top)."""
+        return self.layer.clip_at(pos)
+
+    def helpEvent(self, event: QGraphicsSceneHelpEvent) -> None:  # noqa: N802 - Qt's name
+        """The tooltip under the mouse: a finding's, an item's, else the clip's."""
+        pos = event.scenePos()
+        text = next((t for source in self.tip_sources if (t := source(pos))), "")
+        if not text:
+            text = next((i.toolTip() for i in self.items(pos) if i.toolTip()), "")
+        if not text:
+            clip = self.clip_at(pos)
+            text = clip.toolTip() if clip is not None else ""
+        if text:
+            QToolTip.showText(event.screenPos(), text, event.widget())
+        else:
+            QToolTip.hideText()
+        event.setAccepted(bool(text))
 
     def set_playhead(self, u: float) -> None:
         """Move the playhead line."""
@@ -201,27 +258,27 @@ class TimelineScene(QGraphicsScene):
         rect = QRectF(exposed)
         g = self.lane_geometry
         lanes = len(self.project.tracks) if self.project else 0
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # lines on pixels
         painter.fillRect(rect, QColor("#d9d9d6"))
-        for lane in range(lanes):
+        for lane in visible_lanes(g, lanes, rect):
             band = QRectF(rect.left(), g.lane_top(lane), rect.width(), g.lane_height)
             painter.fillRect(band, LANE_COLOURS[lane % 2])
-            painter.setPen(QPen(QColor("#c8c8c4"), 1))
-            painter.drawLine(QLineF(rect.left(), band.bottom(), rect.right(), band.bottom()))
+            # pixel-wide fills, not blended lines: they cost a twentieth
+            painter.fillRect(QRectF(rect.left(), band.bottom(), rect.width(), 1), LANE_EDGE)
         if self.project is None or lanes == 0:
             return
         factor = display_factor(self.project.axis)
         step = nice_step(g.px_per_unit / factor) / factor
         first = math.floor(g.u(rect.left()) / step)
         last = math.ceil(g.u(rect.right()) / step)
-        painter.setPen(QPen(QColor(0, 0, 0, 25), 1))
         bottom = g.lane_top(lanes)
         loop = self.project.loop
         if loop is not None:
             band = QRectF(g.x(loop.start), 0, g.x(loop.stop) - g.x(loop.start), bottom)
             painter.fillRect(band.intersected(rect), QColor(56, 160, 90, 30))
+        top, height = max(0.0, rect.top()), min(bottom, rect.bottom()) - max(0.0, rect.top())
         for i in range(first, last + 1):
-            x = g.x(i * step)
-            painter.drawLine(QLineF(x, 0, x, bottom))
+            painter.fillRect(QRectF(round(g.x(i * step)), top, 1, height), GRID_COLOUR)
 
     def grid_step(self) -> float:
         """The grid spacing in axis units at the current zoom (what snapping lands on)."""

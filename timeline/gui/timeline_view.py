@@ -19,17 +19,21 @@ from .geometry import Geometry
 from .gestures.amplitude import AmplitudeGesture
 from .gestures.base import Gesture
 from .gestures.fade import FadeGesture
+from .gestures.gain import GainGesture
 from .gestures.move import MoveGesture
 from .gestures.palette_drop import PaletteDrop, dropped_tile
-from .gestures.pivot import PivotGesture
+from .gestures.pivot import PivotGesture, places_mirror_line
 from .gestures.rubber_band import RubberBandGesture
+from .gestures.select import extended
 from .gestures.stretch import StretchGesture
 from .gestures.trim import TrimGesture
+from .snap_line import SnapLine
 from .snapping import EdgeIndex, snap
 from .timeline_scene import TimelineScene
 
 SNAP_PX = 8.0
 ZOOM_STEP = 1.25
+LABELS_PX = 200  # the scale labels at the left edge are within this width
 FIT_MARGIN_PX = 12  # room after the project's end when fitted, so the last edge can be grabbed
 
 CURSORS = {
@@ -38,6 +42,7 @@ CURSORS = {
     "fade-in": Qt.CursorShape.PointingHandCursor,
     "fade-out": Qt.CursorShape.PointingHandCursor,
     "body": Qt.CursorShape.OpenHandCursor,
+    "gain": Qt.CursorShape.SizeVerCursor,
 }
 
 
@@ -55,10 +60,12 @@ class TimelineView(QGraphicsView):
         super().__init__(self._scene)
         self.doc = doc
         self.snapping = True
+        self.ripple = False  # Edit > Ripple edit: trims and deletes move the later clips
         self._edges = EdgeIndex()
         self.gesture: Gesture | None = None
         self.drop: PaletteDrop | None = None
         self.menu: QMenu | None = None  # the last context menu shown
+        self.menu_at = QPointF()  # the scene point it was asked for at
         self.readout = QLabel(self.viewport())
         self.readout.setStyleSheet(
             "background: rgba(255, 255, 230, 235); border: 1px solid #999; padding: 1px 4px;"
@@ -67,6 +74,7 @@ class TimelineView(QGraphicsView):
         self.setAlignment(Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
         self.setRenderHint(QPainter.RenderHint.Antialiasing)
         self.setViewportUpdateMode(QGraphicsView.ViewportUpdateMode.MinimalViewportUpdate)
+        self.snap_line = SnapLine(self._scene, self.lane_geometry)
         self.setAcceptDrops(True)
         self.setMouseTracking(True)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOn)
@@ -106,11 +114,14 @@ class TimelineView(QGraphicsView):
         return self.clip_item(clip_id).sceneBoundingRect().adjusted(1, 1, -1, -1)
 
     def snap(self, u: float, dragged: list[str]) -> float:
-        """Snap an axis position to clip edges or the grid, if snapping is on."""
+        """Snap an axis position to clip edges or the grid, if snapping is on; the snap line
+        shows where it snapped."""
         if not self.snapping:
             return u
         nearest = self._edges.nearest(self.doc.project, u, dragged)
-        return snap(u, [nearest], self.scene().grid_step(), self.lane_geometry.u(SNAP_PX))
+        snapped = snap(u, [nearest], self.scene().grid_step(), self.lane_geometry.u(SNAP_PX))
+        self.snap_line.show_at(snapped if snapped != u else None)
+        return snapped
 
     # --- zoom and scroll -------------------------------------------------------------------
 
@@ -141,12 +152,16 @@ class TimelineView(QGraphicsView):
             bar.setValue(int(x - 0.1 * width))
 
     def drawBackground(self, painter: QPainter, rect) -> None:
+        painter.save()
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # level lines on pixels
         super().drawBackground(painter, rect)
         lane_scale.draw_grid(painter, self.lane_geometry, self.doc.project, rect)
+        painter.restore()
 
     def drawForeground(self, painter: QPainter, rect) -> None:
         visible = self.mapToScene(self.viewport().rect()).boundingRect()
-        lane_scale.draw_labels(painter, self.lane_geometry, self.doc.project, visible)
+        if rect.left() <= visible.left() + LABELS_PX:  # a clip repainted elsewhere: no labels
+            lane_scale.draw_labels(painter, self.lane_geometry, self.doc.project, visible)
 
     def scrollContentsBy(self, dx: int, dy: int) -> None:
         super().scrollContentsBy(dx, dy)
@@ -179,10 +194,9 @@ class TimelineView(QGraphicsView):
         self.readout.show()
 
     def item_at(self, pos: QPointF) -> ClipItem | None:
-        for item in self.items(pos.toPoint()):
-            if isinstance(item, ClipItem):
-                return item
-        return None
+        """The clip under a viewport position (within a narrow clip's grab area; where two clips
+        touch, the one the pointer is over)."""
+        return self.scene().clip_at(self.mapToScene(pos.toPoint()))
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         if event.button() != Qt.MouseButton.LeftButton:
@@ -197,13 +211,17 @@ class TimelineView(QGraphicsView):
             self.gesture = RubberBandGesture(self, pos, add)
             return
         clip_id = item.clip.id
-        if mods & Qt.KeyboardModifier.ControlModifier:
+        if mods & Qt.KeyboardModifier.ControlModifier and not places_mirror_line(mods):
             chosen = list(self.doc.selected_clips)
             chosen.remove(clip_id) if clip_id in chosen else chosen.append(clip_id)
             self.doc.select_clips(chosen)
             return
-        if clip_id not in self.doc.selected_clips:
+        if mods & Qt.KeyboardModifier.ShiftModifier and clip_id not in self.doc.selected_clips:
+            self.doc.select_clips(extended(self.doc.project, self.doc.selected_clips, clip_id))
+        elif clip_id not in self.doc.selected_clips:
             self.doc.select_clips([clip_id])
+        else:  # the pressed clip first: the inspector shows it and Shift+click extends from it
+            self.doc.select_clips([clip_id, *self.doc.selected_clips])
         self.doc.select_tile(item.clip.tile_id)
         self.gesture = self._gesture_for(item, pos, mods)
 
@@ -211,10 +229,12 @@ class TimelineView(QGraphicsView):
         zone = item.zone(item.mapFromScene(pos))
         clip_id = item.clip.id
         shift = bool(mods & Qt.KeyboardModifier.ShiftModifier)
-        if mods & Qt.KeyboardModifier.AltModifier:
+        if places_mirror_line(mods):
             return PivotGesture(self, pos, clip_id)
         if zone.startswith("fade-"):
             return FadeGesture(self, pos, clip_id, zone[5:])
+        if zone == "gain":
+            return GainGesture(self, pos, clip_id)
         if zone in ("left", "right"):
             cls = StretchGesture if shift else TrimGesture
             return cls(self, pos, clip_id, zone)
@@ -241,9 +261,11 @@ class TimelineView(QGraphicsView):
         gesture, self.gesture = self.gesture, None
         gesture.release(self.mapToScene(event.position().toPoint()))
         self.readout.hide()
+        self.snap_line.show_at(None)
         self.gesture_finished.emit()
 
     def contextMenuEvent(self, event) -> None:
+        self.menu_at = self.mapToScene(event.pos())  # where "Set mirror line here" puts it
         item = self.item_at(QPointF(event.pos()))
         if item is not None:
             zone = item.zone(item.mapFromScene(self.mapToScene(event.pos())))
@@ -279,12 +301,14 @@ class TimelineView(QGraphicsView):
         event.acceptProposedAction()
 
     def dragLeaveEvent(self, event) -> None:
+        self.snap_line.show_at(None)
         if self.drop is not None:
             self.drop.finish()
             self.drop = None
 
     def dropEvent(self, event: QDropEvent) -> None:
         pos = self.mapToScene(event.position().toPoint())
+        self.snap_line.show_at(None)
         if self.drop is not None:
             drop, self.drop = self.drop, None
             drop.drop(pos)

@@ -1,9 +1,10 @@
-"""Track headers beside the lanes: name, kind colour and label, unit, gain, mute, solo, remove."""
+"""Track headers beside the lanes: name, kind colour and label, unit, gain, mute, solo, remove.
+Click a header to show its track in the inspector; drag it up or down to reorder the tracks."""
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt, Signal
-from PySide6.QtGui import QColor
+from PySide6.QtCore import QEvent, QObject, QPoint, Qt, Signal
+from PySide6.QtGui import QColor, QMouseEvent
 from PySide6.QtWidgets import (
     QDoubleSpinBox,
     QFrame,
@@ -26,6 +27,7 @@ from .document import Document
 from .geometry import LANE_HEIGHT
 
 WIDTH = 270
+DRAG_PX = 4  # a header moved less than this was clicked, not dragged
 
 
 class TrackHeader(QFrame):
@@ -38,6 +40,9 @@ class TrackHeader(QFrame):
         kind = track_kind(track.kind)
         self.setFixedHeight(LANE_HEIGHT)
         self.setObjectName("header")
+        self.setCursor(Qt.CursorShape.OpenHandCursor)
+        self.setToolTip("click to see the track in the inspector; drag up or down to reorder")
+        self._press: QPoint | None = None
         self.setStyleSheet(
             f"#header {{ border-left: 6px solid {kind.colour}; border-bottom: 1px solid #c8c8c4;"
             " background: #f7f7f5; }"
@@ -77,7 +82,14 @@ class TrackHeader(QFrame):
         layout.setSpacing(2)
         layout.addLayout(top)
         layout.addLayout(bottom)
+        for field in (self.name, self.gain):
+            field.installEventFilter(self)  # typing in a header shows its track too
         self.show_track(track)
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:
+        if event.type() == QEvent.Type.FocusIn:
+            self.doc.select_track(self.track_id)
+        return False
 
     def _toggle(self, text: str, tip: str, field: str) -> QToolButton:
         button = QToolButton()
@@ -103,6 +115,36 @@ class TrackHeader(QFrame):
             if not (widget is self.name and widget.hasFocus()):
                 getattr(widget, setter)(value)
             widget.blockSignals(False)
+
+    def mousePressEvent(self, event: QMouseEvent) -> None:
+        if event.button() == Qt.MouseButton.LeftButton:
+            self._press = event.position().toPoint()
+            self.doc.select_track(self.track_id)
+
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:
+        column = self._column()
+        if self._press is None or column is None:
+            return
+        if (event.position().toPoint() - self._press).manhattanLength() >= DRAG_PX:
+            column.reorder_hover(self.track_id, self._column_y(event))
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:
+        press, self._press = self._press, None
+        column = self._column()
+        if press is None or column is None:
+            return
+        if (event.position().toPoint() - press).manhattanLength() >= DRAG_PX:
+            column.reorder_drop(self.track_id, self._column_y(event))
+
+    def _column(self) -> HeaderColumn | None:
+        widget = self.parentWidget()
+        while widget is not None and not isinstance(widget, HeaderColumn):
+            widget = widget.parentWidget()
+        return widget
+
+    def _column_y(self, event: QMouseEvent) -> float:
+        """The pointer's y among the headers (0 at the first header's top)."""
+        return self.y() + event.position().y()
 
     def _rename(self) -> None:
         track = self.doc.project.track(self.track_id)
@@ -137,8 +179,32 @@ class HeaderColumn(QScrollArea):
         self.rows.addStretch(1)
         self.setWidget(inner)
         self.headers: dict[str, TrackHeader] = {}
+        self.drop_line = QFrame(inner)
+        self.drop_line.setStyleSheet("background: #3875d7;")
+        self.drop_line.hide()
         doc.changed.connect(self.refresh)
         self.refresh()
+
+    def _slot(self, y: float) -> int:
+        """The boundary between headers (0 above the first, n below the last) nearest to y."""
+        return max(0, min(len(self.headers), round(y / LANE_HEIGHT)))
+
+    def reorder_hover(self, track_id: str, y: float) -> None:
+        """Show where a dragged header would go."""
+        self.drop_line.setGeometry(0, self._slot(y) * LANE_HEIGHT - 1, self.width(), 3)
+        self.drop_line.show()
+        self.drop_line.raise_()
+
+    def reorder_drop(self, track_id: str, y: float) -> None:
+        """Move the dragged track to where its header was dropped (one undo step)."""
+        self.drop_line.hide()
+        slot = self._slot(y)
+        old = list(self.headers).index(track_id)
+        index = slot - 1 if slot > old else slot
+        if index != old:
+            name = self.doc.project.track(track_id).name
+            self.doc.apply(f"move track {name} to place {index + 1}", edits.move_track,
+                           track_id, index)  # fmt: skip
 
     def kind_menu(self) -> QMenu:
         """The menu of track kinds usable on the project's axis."""

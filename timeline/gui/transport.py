@@ -17,6 +17,7 @@ from PySide6.QtWidgets import (
 from timeline.plugins.device_protocol import HAND_MODELS, HAND_MODES, Hand
 from timeline.plugins.device_protocol.hand import DEFAULT_PUSH_MNM, DEFAULT_TURN_DEG_PER_S
 
+from .flow_layout import FlowLayout
 from .geometry import axis_text
 from .player import Player
 from .scope import Scope
@@ -66,28 +67,23 @@ class Transport(QWidget):
         self.hand_value.valueChanged.connect(lambda _: self._set_hand())
         self._mode_chosen(self.hand.currentText())
         self.where = QLabel()
-        self.where.setMinimumWidth(70)
+        self.where.setMinimumWidth(self.where.fontMetrics().horizontalAdvance("-00000.000 s"))
         self.where.setToolTip("Where the playhead is")
         self.show_position(0.0, "time")
         self.scope = Scope()
-        # two rows, so the editor fits a 1280-pixel-wide screen
-        play_row, device_row = QHBoxLayout(), QHBoxLayout()
-        for widget in (self.play_button, self.loop, self.selected_only):
-            play_row.addWidget(widget)
-        play_row.addStretch(1)
-        play_row.addWidget(QLabel("playhead"))
-        play_row.addWidget(self.where)
-        device_row.addWidget(QLabel("device"))
-        device_row.addWidget(self.device)
-        device_row.addWidget(QLabel("hand"))
-        device_row.addWidget(self.hand_model)
-        device_row.addWidget(self.hand)
-        device_row.addWidget(self.hand_value)
-        device_row.addStretch(1)
+        # groups of controls flow into as many rows as the width needs (a 1024-pixel window)
+        self.groups = [
+            _group(self.play_button, self.loop, self.selected_only),
+            _group(QLabel("playhead"), self.where),
+            _group(QLabel("device"), self.device),
+            _group(QLabel("hand"), self.hand_model, self.hand, self.hand_value),
+        ]
+        rows = FlowLayout(spacing=8)
+        for group in self.groups:
+            rows.addWidget(group)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(4, 2, 4, 2)
-        layout.addLayout(play_row)
-        layout.addLayout(device_row)
+        layout.addLayout(rows)
         layout.addWidget(self.scope, 1)
         player.telemetry.connect(self.scope.add)
         player.finished.connect(lambda _: self.show_playing(False))
@@ -124,3 +120,13 @@ class Transport(QWidget):
     def show_position(self, u: float, axis: str) -> None:
         """Show the playhead position in seconds, or degrees in a position project."""
         self.where.setText(axis_text(u, axis, ".3f" if axis == "time" else ".1f"))
+
+
+def _group(*widgets: QWidget) -> QWidget:
+    """Controls that stay together on one row of the transport."""
+    group = QWidget()
+    row = QHBoxLayout(group)
+    row.setContentsMargins(0, 0, 0, 0)
+    for widget in widgets:
+        row.addWidget(widget)
+    return group

@@ -1,6 +1,6 @@
 """The waveform editor: the selected tile's curve, spline points (or a vibration design's
 amplitude or frequency breakpoints) to drag, add and delete, exact values in numeric boxes, and a
-range that can be dragged (or sent) to the palette."""
+range that can be dragged (or sent) to the palette; a palette tile dropped on it opens there."""
 
 from __future__ import annotations
 
@@ -29,6 +29,7 @@ from timeline.tiles.vibration_tile import VibrationTile
 from .clip_shape import tile_samples
 from .document import Document
 from .geometry import axis_text, display_factor
+from .gestures.palette_drop import dropped_tile
 from .lane_scale import full_scale_text
 from .palette import RANGE_MIME
 from .tile_editing import edit_tile
@@ -63,6 +64,9 @@ class Canvas(QWidget):
         self.selecting = False
         self.merge_key: object = None
         self.span = (-1.0, 1.0)
+        self._drawn: tuple[tuple[object, ...], QPolygonF, float] | None = None  # the curve
+        self._tile: Tile | None = None
+        self.shown: object = None  # what the last paint showed (refresh skips a repaint of it)
 
     # mapping between tile units and widget pixels
     def _duration(self) -> float:
@@ -109,18 +113,14 @@ class Canvas(QWidget):
                 QRectF(self.x_of(a), 0, self.x_of(b) - self.x_of(a), self.height()),
                 QColor(56, 117, 215, 45),
             )
-        data, rate = tile_samples(tile, self.editor.doc.project.rate)
-        peak = max(1.0, float(np.abs(data).max()))
+        count = max(2, self.width() - int(2 * MARGIN))
+        curve, peak = self._curve(tile, count)
         self.span = (-peak * 1.1, peak * 1.1)
         self._paint_scale(painter, peak)
-        count = max(2, self.width() - int(2 * MARGIN))
-        idx = np.linspace(0, len(data) - 1, count)
-        values = np.interp(idx, np.arange(len(data)), data)
-        xs = np.linspace(MARGIN, self.width() - MARGIN, count)
-        painter.setPen(QPen(QColor("#3a6ea5"), 1.5))
-        painter.drawPolyline(
-            QPolygonF([QPointF(x, self.y_of(v)) for x, v in zip(xs, values, strict=True)])
-        )
+        painter.setPen(QPen(QColor("#3a6ea5"), 1))
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # columns: no blending
+        painter.drawPolyline(curve)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, True)
         points = self.editor.points() or ()
         if isinstance(tile, VibrationTile):
             self._paint_envelopes(painter, tile)
@@ -137,6 +137,26 @@ class Canvas(QWidget):
             QPointF(MARGIN + 2, 12),
             f"{tile.name} · {axis_text(tile.duration, self.editor.doc.project.axis)}",
         )
+
+    def _curve(self, tile: Tile, count: int) -> tuple[QPolygonF, float]:
+        """The tile's curve in widget pixels, decimated to `count` columns, and its peak;
+        made again only when the tile, the size or the project rate changed."""
+        rate = self.editor.doc.project.rate
+        key = (id(tile), count, self.height(), rate)  # the tile is held by _drawn's curve key
+        if self._drawn is None or self._drawn[0] != key:
+            data, _ = tile_samples(tile, rate)
+            peak = max(1.0, float(np.abs(data).max()))
+            self.span = (-peak * 1.1, peak * 1.1)
+            at, values = decimate(data, count)
+            xs = MARGIN + at / max(1, len(data) - 1) * (self.width() - 2 * MARGIN)
+            lo, hi = self.span
+            ys = MARGIN + (hi - values) / (hi - lo) * (self.height() - 2 * MARGIN)
+            curve = QPolygonF(
+                [QPointF(x, y) for x, y in zip(xs.tolist(), ys.tolist(), strict=True)]
+            )
+            self._drawn = (key, curve, peak)
+            self._tile = tile  # keeps id(tile) from being reused while the key holds it
+        return self._drawn[1], self._drawn[2]
 
     def _paint_envelopes(self, painter: QPainter, tile: VibrationTile) -> None:
         """A design's envelopes over its carrier: the edited one bold, the other faint; in the
@@ -264,6 +284,23 @@ class Canvas(QWidget):
         super().keyPressEvent(event)
 
 
+def decimate(data: np.ndarray, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """A polyline through `data` with at most 2 points per column of `count`: each column's
+    highest then lowest sample (sample positions, values), so no peak is lost; fewer samples
+    than 2 per column are returned as they are."""
+    n = len(data)
+    if n <= 2 * count:
+        return np.arange(n, dtype=np.float64), np.asarray(data, dtype=np.float64)
+    starts = (np.arange(count) * n) // count
+    hi = np.maximum.reduceat(data, starts)
+    lo = np.minimum.reduceat(data, starts)
+    middle = starts + (np.r_[starts[1:], n] - starts) / 2
+    at = np.repeat(middle, 2)
+    values = np.empty(2 * count)
+    values[0::2], values[1::2] = hi, lo
+    return at, values
+
+
 def nice_level(peak: float) -> float:
     """The largest 1-2-5 number not above the peak (the scale's top line)."""
     power = 10.0 ** math.floor(math.log10(max(peak, 1e-12)))
@@ -325,9 +362,35 @@ class WaveformEditor(QWidget):
         layout.addWidget(self.canvas, 1)
         layout.addLayout(point_row)
         layout.addLayout(tile_row)
+        self.setAcceptDrops(True)
         doc.changed.connect(self.refresh)
         doc.selection_changed.connect(self.refresh)
         self.refresh()
+
+    def _dropped(self, event) -> str | None:
+        tile_id = dropped_tile(event.mimeData())
+        return tile_id if tile_id in self.doc.project.tiles else None
+
+    def dragEnterEvent(self, event) -> None:
+        if self._dropped(event) is not None:
+            event.setDropAction(Qt.DropAction.CopyAction)
+            event.accept()
+        else:
+            event.ignore()
+
+    def dragMoveEvent(self, event) -> None:
+        self.dragEnterEvent(event)
+
+    def dropEvent(self, event) -> None:
+        """A palette tile dropped here opens in the editor (the timeline is left as it is)."""
+        tile_id = self._dropped(event)
+        if tile_id is None:
+            event.ignore()
+            return
+        event.setDropAction(Qt.DropAction.CopyAction)
+        event.accept()
+        self.doc.select_tile(tile_id)
+        self.doc.message.emit(f"editing {self.doc.project.tile(tile_id).name}", "info")
 
     def points(self) -> tuple[tuple[float, float], ...] | None:
         """The shown tile's draggable points (a design's: those of the chosen envelope)."""
@@ -397,7 +460,27 @@ class WaveformEditor(QWidget):
                 box.blockSignals(True)
                 box.setValue(value)
                 box.blockSignals(False)
-        self.canvas.update()
+        shown = self._shown_key()
+        if shown != self.canvas.shown:  # a clip dragged elsewhere changes nothing here
+            self.canvas.shown = shown
+            self.canvas.update()
+
+    def _shown_key(self) -> tuple[object, ...]:
+        """Everything the canvas draws depends on (the tile, points, range, track's scale)."""
+        track = self.track()
+        scale = None if track is None else (track.id, track.kind, track.full_scale, track.name)
+        project = self.doc.project
+        tile = self.tile  # by identity: a tile's arrays do not compare with ==
+        return (
+            id(tile),
+            tile,
+            self.point,
+            self.range,
+            self.lane,
+            scale,
+            project.axis,
+            project.rate,
+        )
 
     def select_point(self, index: int | None) -> None:
         self.point = index
@@ -408,16 +491,19 @@ class WaveformEditor(QWidget):
         self.refresh()
 
     def _typed(self) -> None:
-        if self.point is None or self.tile_id is None:
+        points = self.points()
+        if self.point is None or self.tile_id is None or points is None:
             return
-        self.apply(
-            self.label("set"),
-            tile_shape.move_point,
-            self.point,
-            self.t_box.value() / display_factor(self.doc.project.axis),
-            self.v_box.value(),
-            self.lane,
-        )
+        # a box left as shown keeps the point's exact value (the box rounds it)
+        t, v = points[self.point]
+        factor = display_factor(self.doc.project.axis)
+        if self.t_box.value() != round(t * factor, self.t_box.decimals()):
+            t = self.t_box.value() / factor
+        if self.v_box.value() != round(v, self.v_box.decimals()):
+            v = self.v_box.value()
+        if (t, v) == points[self.point]:
+            return
+        self.apply(self.label("set"), tile_shape.move_point, self.point, t, v, self.lane)
 
     def apply(self, label: str, edit, *args, merge_key: object = None):
         """Edit the shown tile: edit(project, tile_id, *args), one undo step (see edit_tile)."""

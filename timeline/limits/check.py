@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from timeline.limits import device_checks, perception_checks
@@ -30,14 +31,17 @@ def check(
     actuator: Actuator | None = None,
     quality: str = "normal",
     hand: Hand | None = None,
+    interrupt: Callable[[], None] = lambda: None,
 ) -> Report:
     """All findings for a project played on a device (and, for vibration, an actuator).
 
     `actuator` defaults to the one the device declares; `hand` (default `hold`) is the hand on a
-    knob, whose grip sets how far its drive moves the skin.
+    knob, whose grip sets how far its drive moves the skin. `interrupt` is called between
+    steps and may raise to abandon the check (the editor stops a check an edit made stale).
     """
     actuator = actuator or info.actuator
     hand = hand or Hand("hold")
+    interrupt()
     design = sample(project, info.rate, quality)
     notes = []
     if info.kind == "kinesthetic":
@@ -66,19 +70,23 @@ def check(
     if not compare_clips:
         notes.append(f"{clips} clips: steps between clips are compared up to "
                      f"{MAX_CLIPS_COMPARED} clips only")  # fmt: skip
-    findings = [
-        *device_checks.saturation(design, info),
-        *device_checks.stability(design, info),
-        *device_checks.slew(design, info),
-        *device_checks.actuator_band(design, info, actuator),
-        *perception_checks.below_detection(design, info, actuator, hand),
-        *perception_checks.short_gaps(design, info),
-        *(
+    steps = [
+        lambda: device_checks.saturation(design, info),
+        lambda: device_checks.stability(design, info),
+        lambda: device_checks.slew(design, info),
+        lambda: device_checks.actuator_band(design, info, actuator),
+        lambda: perception_checks.below_detection(design, info, actuator, hand),
+        lambda: perception_checks.short_gaps(design, info),
+        lambda: (
             perception_checks.sub_jnd_clips(project, info, design.rate, quality)
             if compare_clips
             else []
         ),  # fmt: skip
-        *perception_checks.sub_jnd_variants(project, info, design.rate, quality),
+        lambda: perception_checks.sub_jnd_variants(project, info, design.rate, quality),
     ]
+    findings: list[Finding] = []
+    for step in steps:
+        interrupt()
+        findings += step()
     findings.sort(key=lambda f: (f.start, f.kind))
     return Report(tuple(findings), tuple(notes))

@@ -13,7 +13,7 @@ from timeline.limits.design import Sampled
 from timeline.limits.findings import Finding, spans
 from timeline.limits.frames import frames
 from timeline.limits.thresholds import AMPLITUDE_JND_DB
-from timeline.plugins.device_protocol import Actuator, DeviceInfo
+from timeline.plugins.device_protocol import Actuator, DeviceInfo, Dynamics
 
 JOIN = 0.05  # s (rad on a position axis): crossings closer than this are one finding
 
@@ -124,7 +124,35 @@ def stability(design: Sampled, info: DeviceInfo) -> list[Finding]:
             "virtual mass outside the band the servo loop renders without chatter",
             lambda v, lim: f"keep the mass between {low:.3g} and {high:.3g} kg*m^2",
         )  # fmt: skip
+    if declared:
+        out += whole_loop(design, dyn, period, k, b, m)
     return out
+
+
+def whole_loop(
+    design: Sampled,
+    dyn: Dynamics,
+    period: float,
+    k: np.ndarray,
+    b: np.ndarray,
+    m: np.ndarray | None,
+) -> list[Finding]:
+    """Spans where every layer is inside its own limit but the loop with all of them is
+    unstable with one of the docs' hands on the knob (or none): servo.whole_loop."""
+    loop = servo.whole_loop(dyn, period, k, b, m, servo.hand_loads())
+    bad = loop.any & servo.layers_inside(dyn, period, k, b, m)
+    if not bad.any():
+        return []
+    hands = ", ".join(name for name, where in loop.unstable.items() if (where & bad).any())
+    radius = np.where(bad, loop.radius, 1.0)
+    return _over(
+        design, "unstable-loop", "", radius - 1.0, radius, np.ones(design.length),
+        "growth per period",
+        "stiffness, damping and mass each inside their own limit, but together they make the "
+        f"servo loop unstable (with the {hands})",
+        lambda v, lim: "lower the damping or the mass there (or the stiffness): each takes "
+        "margin from the others",
+    )  # fmt: skip
 
 
 def slew(design: Sampled, info: DeviceInfo) -> list[Finding]:

@@ -18,8 +18,9 @@ from timeline.tiles import GeneratorTile
 def aliasing_notes(project: Project, rate: float | None = None) -> list[str]:
     """One sentence per generator clip that renders differently from its design at `rate`.
 
-    Names clips whose content is removed above Nyquist, and square/saw/triangle clips whose
-    third harmonic (at 1/3 or 1/9 of the level) is removed by band-limiting.
+    Names clips whose content is removed above Nyquist, square/saw/triangle clips whose
+    third harmonic (at 1/3 or 1/9 of the level) is removed by band-limiting, and noise clips
+    whose bandwidth is above Nyquist (rendered band-limited to it).
     """
     rate = float(project.rate if rate is None else rate)
     nyquist = 0.5 * rate
@@ -45,6 +46,15 @@ def aliasing_notes(project: Project, rate: float | None = None) -> list[str]:
                         f"{where}: the harmonics of its {f:g} {unit} {tile.generator} wave at or "
                         f"above {nyquist:g} {unit} were removed, so it renders close to a sine; "
                         "render at a higher rate to keep its shape"
+                    )
+                continue
+            if tile.generator == "noise":
+                bandwidth = params["bandwidth"] / speed
+                if bandwidth > nyquist:
+                    notes.append(
+                        f"{where} has a {bandwidth:g} {unit} bandwidth, above the {nyquist:g} "
+                        f"{unit} Nyquist frequency of this rate: it renders as noise band-limited "
+                        f"to {nyquist:g} {unit}, at the level of its part below that"
                     )
                 continue
             highest = HIGHEST_FREQUENCY.get(tile.generator)

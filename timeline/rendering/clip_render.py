@@ -8,6 +8,7 @@ import numpy as np
 
 from timeline.model import Clip, Fade
 from timeline.signal.fades import fade_envelope
+from timeline.signal.grid_shapes import fade_on_grid
 from timeline.signal.render_presets import QualityPreset
 from timeline.tiles import Tile
 
@@ -116,14 +117,25 @@ def _apply_fades(values: np.ndarray, clip: Clip, pos0: float, rate: float) -> No
     spans = [(0, n)] if z <= a else [(0, a), (z, n)]
     for lo, hi in spans:
         if hi > lo:
-            pos = pos0 + np.arange(lo, hi) / rate
+            first, last = pos0 + lo / rate, pos0 + (hi - 1) / rate  # pos[0], pos[-1] below
             # a fade whose gain is exactly 1 over the whole span (its x >= 1 at the span's end
             # nearest it: x is monotone in pos) is left out, with the same bits
-            fi = fade_in if fade_in.length > 0 and pos[0] / fade_in.length < 1.0 else NO_FADE
-            ends = clip.duration - pos[-1]
+            fi = fade_in if fade_in.length > 0 and first / fade_in.length < 1.0 else NO_FADE
+            ends = clip.duration - last
             fo = fade_out if fade_out.length > 0 and ends / fade_out.length < 1.0 else NO_FADE
             if fi.length > 0 or fo.length > 0:
-                values[lo:hi] *= fade_envelope(pos, clip.duration, fi, fo)
+                _fade(values, lo, hi, pos0, rate, clip.duration, fi, fo)
+
+
+def _fade(values: np.ndarray, lo: int, hi: int, pos0: float, rate: float, duration: float,
+          fade_in: Fade, fade_out: Fade) -> None:  # fmt: skip
+    """values[lo:hi] *= the fades' gains at offsets pos0 + k/rate: the compiled loop where it
+    applies (timeline.signal.grid_shapes, the same bits), else numpy."""
+    fi = (fade_in.length, fade_in.shape) if fade_in.length > 0 else None
+    fo = (fade_out.length, fade_out.shape) if fade_out.length > 0 else None
+    if not fade_on_grid(values, lo, hi, pos0, rate, duration, fi, fo):
+        pos = pos0 + np.arange(lo, hi) / rate
+        values[lo:hi] *= fade_envelope(pos, duration, fade_in, fade_out)
 
 
 def _source_values(

@@ -9,8 +9,11 @@ harmonics at every multiple of their frequency: above Nyquist their fundamental 
 same way; below it, when the harmonics at or above Nyquist carry more than ALIAS_LIMIT of the
 wave's power, the wave is synthesised from its harmonics below Nyquist
 (timeline.signal.harmonic_waves), and otherwise sampled as the ideal wave (its alias is under the
-limit). timeline.rendering.aliasing names the clips whose rendering departs audibly from their
-design.
+limit). Noise whose bandwidth is above Nyquist would fold its whole power into the band (20 kHz
+noise at a 10 kHz rate comes out at about twice the level of its part below 5 kHz): it is
+rendered as white noise up to Nyquist (one lattice value per sample) at the power the designed
+noise has below Nyquist (generators.noise_level_below). timeline.rendering.aliasing names the
+clips whose rendering departs audibly from their design.
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from timeline.signal.generators import noise_level_below, white_noise
 from timeline.signal.harmonic_waves import HARMONIC, aliased_fraction, synthesise
 from timeline.signal.vibration_design import carrier_hz
 
@@ -70,6 +74,14 @@ def band_limited(
         if bounds is not None and bounds[0] >= 0.0 and bounds[1] <= duration:
             return values  # all of u inside the span: nothing to zero
         return np.where((u < 0) | (u > duration), 0.0, values)
+    if generator == "noise" and params["bandwidth"] > nyquist:
+        values = white_noise(u, params["seed"], 2.0 * nyquist, noise_level(params, nyquist))
+        lo, hi = _range(u) if bounds is None else bounds
+        return (
+            values
+            if lo >= 0.0 and hi <= duration
+            else np.where((u < 0) | (u > duration), 0.0, values)
+        )
     highest = HIGHEST_FREQUENCY.get(generator)
     if highest is None:
         return evaluate(u)
@@ -85,6 +97,23 @@ def band_limited(
     values = evaluate(u)
     top = np.broadcast_to(highest(u, duration, params), values.shape)
     return np.where(top < nyquist, values, 0.0)
+
+
+def _range(u: np.ndarray) -> tuple[float, float]:
+    """The least and greatest of u ((0, 0) when empty)."""
+    return (float(np.min(u)), float(np.max(u))) if np.size(u) else (0.0, 0.0)
+
+
+def noise_level(params: Mapping[str, float], nyquist: float) -> float:
+    """The level of a noise band-limited to `nyquist` (its bandwidth above it): white_noise's
+    factor, so its power is what the designed noise has below Nyquist."""
+    return params["amplitude"] * _noise_level_below(params["bandwidth"], nyquist)
+
+
+@lru_cache(maxsize=4096)
+def _noise_level_below(bandwidth: float, nyquist: float) -> float:
+    """noise_level_below, remembered (asked again by every render of a clip)."""
+    return noise_level_below(bandwidth, nyquist)
 
 
 @lru_cache(maxsize=4096)

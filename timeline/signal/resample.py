@@ -10,7 +10,7 @@ from functools import cache
 
 import numpy as np
 
-from timeline.signal import samples
+from timeline.signal import compiled, samples
 from timeline.signal.render_presets import QualityPreset
 
 # Samples of context kept either side of a segment so soxr's filter settles before the part used.
@@ -193,5 +193,26 @@ def _fractional_delay(x: np.ndarray, first: int, fraction: float, n: int) -> np.
     taps = np.sinc(k - fraction) * _kaiser()
     taps /= taps.sum()
     span = _take(x, first - _SINC_HALF, n + 2 * _SINC_HALF)
+    if compiled.compiled_wanted(n) and _compiled_delay_matches():
+        from timeline.signal.render_kernels import fractional_delay
+
+        out = np.empty(n)
+        fractional_delay(span, taps, out)  # numpy's bits, ~3x faster
+        return out
     # out[i] = sum_k taps[k] * x[first + i + k]
     return np.convolve(span, taps[::-1], mode="valid")[1 : n + 1]
+
+
+@cache
+def _compiled_delay_matches() -> bool:
+    """True when the compiled delay gives np.convolve's bits on this machine (its loop sums as
+    OpenBLAS's ddot kernel for AVX2 does; another BLAS or kernel may sum otherwise)."""
+    from timeline.signal.render_kernels import fractional_delay
+
+    rng = np.random.default_rng(0)
+    span = rng.standard_normal(3 * 256 + 2 * _SINC_HALF + 5)
+    taps = rng.standard_normal(2 * _SINC_HALF)
+    n = span.size - 2 * _SINC_HALF
+    out = np.empty(n)
+    fractional_delay(span, taps, out)
+    return bool(np.array_equal(out, np.convolve(span, taps[::-1], mode="valid")[1 : n + 1]))

@@ -9,7 +9,7 @@ import numpy as np
 from timeline.errors import HapticTimelineError
 from timeline.limits.design import sample
 from timeline.model import Project
-from timeline.similarity.distance import ALIKE, distances
+from timeline.similarity.distance import ALIKE, Parts, distances
 from timeline.similarity.features import Features, features
 from timeline.similarity.mds import classical_mds
 
@@ -21,7 +21,7 @@ class Comparison:
     names: list[str]
     features: list[Features]
     matrix: np.ndarray
-    parts: list[list[dict[str, float]]]
+    parts: Parts  # parts[i][j]: the pair's {feature: JNDs}
     coords: np.ndarray  # n x 2
     explained: float  # share of the variance the map keeps
 

@@ -17,6 +17,7 @@ from timeline.errors import EditError
 from timeline.signal import samples
 from timeline.signal.band_limit import band_limited
 from timeline.signal.generators import GENERATORS
+from timeline.signal.grid_shapes import generator_on_grid, spline_on_grid
 from timeline.signal.render_presets import QualityPreset
 from timeline.signal.resample import sample_grid
 from timeline.signal.splines import PiecewiseCubic, natural_cubic, pchip
@@ -30,6 +31,16 @@ def _check_duration(duration: float) -> float:
     if not math.isfinite(duration) or duration <= 0:
         raise EditError(f"a tile's duration must be a positive number, not {duration!r}")
     return duration
+
+
+def _number(generator: str, name: str, value: Any) -> float:
+    """A generator parameter as a float, or an EditError naming it."""
+    try:
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise EditError(
+            f"generator {generator!r} parameter {name!r} must be a number, not {value!r}"
+        ) from None
 
 
 def _evaluate_decimated(fn, u0: float, du: float, n: int, decimation: int) -> np.ndarray:
@@ -209,6 +220,16 @@ class SplineTile:
         return _zero_outside(u, out, self.duration, lo, hi)
 
     def render(self, u0: float, du: float, n: int, quality: QualityPreset) -> np.ndarray:
+        curve = self._curve
+        if isinstance(curve, PiecewiseCubic) and (
+            quality.control_decimation <= 1 or n <= 2 * quality.control_decimation
+        ):
+            ends = (self.points[0][1], self.points[-1][1])
+            values = spline_on_grid(curve.x, curve.a, curve.b, curve.c, curve.d, ends,
+                                    self.duration, u0, du, n)  # fmt: skip
+            if values is not None:
+                return values
+
         def on_grid(u: np.ndarray, lo: float, hi: float) -> np.ndarray:
             return self._values(u, lo, hi, grid=True)
 
@@ -240,11 +261,18 @@ class GeneratorTile:
                 f"generator {self.generator!r} has no parameter {sorted(unknown)[0]!r} "
                 f"(it takes {', '.join(spec.defaults)})"
             )
-        merged = {**spec.defaults, **{k: float(v) for k, v in given.items()}}
-        if not all(math.isfinite(v) for v in merged.values()):
-            raise EditError(f"generator {self.generator!r} parameters must be finite numbers")
+        merged = {**spec.defaults, **{k: _number(self.generator, k, v) for k, v in given.items()}}
+        for name, value in merged.items():
+            if not math.isfinite(value):
+                raise EditError(
+                    f"generator {self.generator!r} parameter {name!r} must be a finite number, "
+                    f"not {value!r}"
+                )
         object.__setattr__(self, "params", tuple(sorted(merged.items())))
         object.__setattr__(self, "duration", _check_duration(self.duration))
+        problem = spec.check(merged, self.duration) if spec.check else None
+        if problem:
+            raise EditError(problem)
         if not self.name:
             object.__setattr__(self, "name", self.generator)
 
@@ -275,6 +303,10 @@ class GeneratorTile:
         spacing = abs(du) * max(1, decimation)
         nyquist = 0.5 / spacing if spacing > 0 else math.inf
         params = dict(self.params)
+        if decimation == 1:
+            values = generator_on_grid(self.generator, params, self.duration, u0, du, n, nyquist)
+            if values is not None:
+                return values
 
         def shape(u: np.ndarray, lo: float, hi: float) -> np.ndarray:
             return band_limited(self.generator, u, nyquist, self.duration, params,

@@ -24,6 +24,7 @@ SUMMARY = "simulated knob: velocity/acceleration estimate gain and phase, mass t
 FREQUENCIES = (10.0, 50.0, 100.0, 175.0, 300.0, 500.0)
 MASS = 1e-5  # kg*m^2: one full scale of the mass track
 SPEEDS = (37.0, 90.0)  # deg/s: 3.7 and exactly 9 encoder counts per period
+BANDS = (1.0, 10.0, 20.0, 50.0, 100.0, 150.0, 200.0)  # deg/s: the speed table's bands
 
 
 def mass_noise(speed: float, seconds: float, estimator: str = "kalman") -> float:
@@ -84,6 +85,7 @@ def run(quick: bool, out: Path) -> list[Table]:
             rms = mass_noise(speed, 1.0 if quick else 2.0, name)
             noise.rows.append([name, white, speed, float(counts), 1e3 * rms])
     noise.notes.append("a whole number of counts per period repeats exactly: no noise")
+    by_speed = speed_table(np.arange(1.0, 200.01, 3.1 if quick else 0.5), 1.0)
     f = np.geomspace(1.0, 2000.0, 200)
     fig, (ax_gain, ax_phase) = figure(7.0, 5.0, ncols=2)
     curves = {"velocity": velocity_response(p, f)}
@@ -98,4 +100,29 @@ def run(quick: bool, out: Path) -> list[Table]:
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     save(fig, out, "estimator")
-    return [response, noise]
+    return [response, noise, by_speed]
+
+
+def speed_table(grid: np.ndarray, seconds: float) -> Table:
+    """Measured mass torque noise per estimator over bands of the hand's turning speed: the
+    median and the worst (with its speed) over the speeds of `grid` (deg/s) in each band. The
+    noise depends on the speed (how the quantisation errors repeat; a whole number of counts
+    per period gives none), so no one speed's figure bounds it."""
+    table = Table(
+        f"Measured torque noise of a {MASS:g} kg*m^2 virtual mass against the hand's turning "
+        f"speed, median / worst (at deg/s) [mNm rms] (default knob, {seconds:g} s per speed, "
+        f"second half; speeds every {grid[1] - grid[0]:g} deg/s from {grid[0]:g})",
+        ["speeds [deg/s]", *ESTIMATORS],
+    )
+    measured = {name: np.array([mass_noise(s, seconds, name) for s in grid]) for name in ESTIMATORS}
+    for lo, hi in zip(BANDS[:-1], BANDS[1:], strict=True):
+        inside = (grid >= lo) & (grid < hi) if hi < BANDS[-1] else (grid >= lo) & (grid <= hi)
+        if not inside.any():
+            continue
+        cells = []
+        for name in ESTIMATORS:
+            values = 1e3 * measured[name][inside]
+            at = int(np.argmax(values))
+            cells.append(f"{np.median(values):.3f} / {values[at]:.3f} (at {grid[inside][at]:g})")
+        table.rows.append([f"{lo:g}-{hi:g}"] + cells)
+    return table

@@ -1,13 +1,22 @@
-"""Alt-click (or Alt-drag) on a clip to place its horizontal mirror line at the mouse's level."""
+"""Place a clip's horizontal mirror line at the mouse's level: Ctrl+Shift+click (or drag), the
+clip menu's "Set mirror line here", or Alt+click where the window manager leaves Alt alone."""
 
 from __future__ import annotations
 
-from PySide6.QtCore import QPointF
+from PySide6.QtCore import QPointF, Qt
 
 from timeline import edits
 from timeline.model import Project
 
 from .base import Gesture
+
+CTRL_SHIFT = Qt.KeyboardModifier.ControlModifier | Qt.KeyboardModifier.ShiftModifier
+
+
+def places_mirror_line(mods: Qt.KeyboardModifier) -> bool:
+    """Whether a press with these keys held places the mirror line: Ctrl+Shift (most Linux
+    window managers take Alt+drag to move windows), or Alt."""
+    return (mods & CTRL_SHIFT) == CTRL_SHIFT or bool(mods & Qt.KeyboardModifier.AltModifier)
 
 
 class PivotGesture(Gesture):

@@ -8,6 +8,7 @@ from timeline import edits
 from timeline.model import Project
 
 from ..geometry import axis_text
+from ..ripple import trim_end_rippled
 from .base import Gesture
 
 
@@ -28,7 +29,10 @@ class TrimGesture(Gesture):
             self.apply(edits.trim_clip, self.clip_id, start=start)
         else:
             end = self.view.snap(self.clip.end + du, [self.clip_id])
-            self.apply(edits.trim_clip, self.clip_id, end=end)
+            if self.view.ripple:  # the later clips of the track follow the end
+                self.apply(trim_end_rippled, self.clip_id, end)
+            else:
+                self.apply(edits.trim_clip, self.clip_id, end=end)
 
     def readout(self, project: Project) -> str:
         _, clip = project.find_clip(self.clip_id)

@@ -28,6 +28,7 @@ if TYPE_CHECKING:  # what pyright and IDEs see; at run time each name loads on f
     )
     from timeline.plugins.device_protocol.hand_models import HAND_MODELS, HandModel
     from timeline.plugins.device_protocol.info import KINDS, DeviceInfo
+    from timeline.plugins.device_protocol.lateness import Lateness, LatenessMeter
     from timeline.plugins.device_protocol.program import (
         CoefficientBlock,
         PositionProgram,
@@ -53,6 +54,7 @@ _EXPORTS = {
     **dict.fromkeys(("DEFAULT_PUSH_MNM", "DEFAULT_TURN_DEG_PER_S", "HAND_MODES", "Hand"), "hand"),
     **dict.fromkeys(("HAND_MODELS", "HandModel"), "hand_models"),
     **dict.fromkeys(("KINDS", "DeviceInfo"), "info"),
+    **dict.fromkeys(("Lateness", "LatenessMeter"), "lateness"),
     **dict.fromkeys(("CoefficientBlock", "PositionProgram", "PositionTable", "Program"), "program"),
     **dict.fromkeys(
         (
@@ -100,6 +102,8 @@ __all__ = [
     "Hand",
     "HandModel",
     "HandSpecError",
+    "Lateness",
+    "LatenessMeter",
     "LiveTelemetry",
     "Monitor",
     "PositionProgram",

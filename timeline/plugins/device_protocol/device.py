@@ -31,6 +31,10 @@ class Device(abc.ABC):
     def close(self) -> None:  # noqa: B027
         """Release the device (idempotent); the output ends at zero."""
 
+    def warm_up(self) -> None:  # noqa: B027 - a device with nothing to load needs nothing here
+        """Load what a first play needs (compiled loops) without playing anything, so Play
+        starts at once; the editor calls it on a background thread once its window is up."""
+
     def __enter__(self) -> Device:
         self.open()
         return self

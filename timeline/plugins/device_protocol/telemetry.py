@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from timeline.errors import DeviceError
+from timeline.plugins.device_protocol.lateness import Lateness
 
 TELEMETRY_COLUMNS = ("time", "angle", "velocity", "torque")
 
@@ -92,6 +93,7 @@ class Telemetry:
     N*m the motor applied, energy the cumulative energy (J) the device put into the knob and
     hand: motor work minus what its own friction dissipated (positive = active), saturated True
     where the torque was clamped. `layers` maps a layer name to the values rendered per sample.
+    `lateness` counts the blocks handed over late when the device plays in real time.
     """
 
     rate: float
@@ -104,6 +106,7 @@ class Telemetry:
     layers: dict[str, np.ndarray] = field(default_factory=dict)
     flags: tuple[StabilityFlag, ...] = ()
     warnings: tuple[str, ...] = ()
+    lateness: Lateness | None = None
 
     def __len__(self) -> int:
         return int(self.time.size)
@@ -151,6 +154,7 @@ class Telemetry:
             layers,
             merge_flags(f for p in parts for f in p.flags),
             tuple(dict.fromkeys(w for p in parts for w in p.warnings)),
+            next((p.lateness for p in reversed(parts) if p.lateness is not None), None),
         )
 
     def summary(self, kind: str = "kinesthetic") -> list[str]:
@@ -174,6 +178,8 @@ class Telemetry:
             ]
         lines += [f"flag {f.describe()}" for f in self.flags] or ["no stability flags"]
         lines += [f"warning: {w}" for w in self.warnings]
+        if self.lateness is not None:
+            lines.append(self.lateness.describe())
         return lines
 
     def write_csv(self, path: str, layer_names: dict[str, str] | None = None) -> None:

@@ -1,0 +1,219 @@
+"""What keeps the editor fast at 20,000 clips, asserted as behaviour (timed by
+`haptic-timeline bench editor`, never here): stale limits checks are stopped, closing with checks
+queued says nothing, zoom moves no clip yet places each at start x scale, the waveform editor's
+decimated curve keeps every column's extremes, and the first paint loads no scipy.signal."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PySide6.QtCore import QPoint, QPointF, Qt
+from PySide6.QtTest import QTest
+
+from timeline import edits
+from timeline.gui import findings_overlay
+from timeline.gui.waveform_editor import decimate
+from timeline.tiles import generator
+
+from .helpers import clip_point
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "projects" / "fan_knob.htl"
+
+
+@pytest.fixture
+def slow_checks(monkeypatch):
+    """Checks that run until told to stop (or released), stepping through `interrupt`."""
+    release = threading.Event()
+    started: list[int] = []
+
+    def check(project, info, hand=None, interrupt=lambda: None):  # noqa: ANN001, ARG001
+        started.append(1)
+        while not release.wait(0.01):
+            interrupt()
+        from timeline.limits.check import Report
+
+        return Report((), ())
+
+    import timeline.limits.check
+
+    monkeypatch.setattr(timeline.limits.check, "check", check)
+    yield release, started
+    release.set()
+
+
+def _wait_until(qtbot, condition) -> None:  # noqa: ANN001
+    qtbot.waitUntil(condition, timeout=10_000)
+
+
+def _fresh_counts(win):  # noqa: ANN001, ANN202
+    """The window's findings with the counts of its first (real) check cleared and a slow check
+    started."""
+    findings = win.findings
+    assert findings.settled and not findings.busy
+    findings.counts.clear()
+    findings.schedule()
+    return findings
+
+
+def test_a_slow_drag_leaves_no_stale_check_running(window, qtbot, monkeypatch, slow_checks):
+    monkeypatch.setattr(findings_overlay, "DELAY_MS", 20)
+    release, started = slow_checks
+    win = window
+    findings = _fresh_counts(win)
+    _wait_until(qtbot, lambda: findings.counts["started"] >= 1)
+    vp = win.view.viewport()
+    at = clip_point(win, win.ids["c1"])
+    QTest.mousePress(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at)
+    for step in range(1, 6):
+        QTest.mouseMove(vp, at + QPoint(4 * step, 0))
+        # a pause longer than the delay: a check starts, and only one runs at a time
+        _wait_until(qtbot, lambda s=step: findings.counts["started"] >= s + 1)
+        assert len(findings.stale_running()) <= 1
+    QTest.mouseMove(vp, at + QPoint(30, 0))  # an edit: the running check is stale
+    QTest.mouseRelease(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at)
+    # the released state's own check starts; every earlier one stopped, none ran to its end
+    _wait_until(qtbot, lambda: not findings.stale_running() and findings.busy)
+    _wait_until(qtbot, lambda: findings.counts["started"] == findings.counts["cancelled"] + 1)
+    counts = findings.counts
+    assert counts["started"] >= 7 and counts["finished"] == 0
+    release.set()
+    _wait_until(qtbot, lambda: findings.settled)
+    assert counts["finished"] == 1 and findings.report is not None
+
+
+def test_queued_checks_are_dropped_not_run(window, qtbot, monkeypatch, slow_checks):
+    release, started = slow_checks
+    findings = _fresh_counts(window)
+    _wait_until(qtbot, lambda: findings.busy and findings.counts["started"] == 1)
+    findings._start()  # a second check queued behind the first: the first is told to stop
+    findings._start()  # a third: the second, still queued, is dropped without running
+    _wait_until(qtbot, lambda: not findings.stale_running() and findings.counts["started"] == 2)
+    assert findings.counts["cancelled"] == 2  # the first stopped, the second dropped
+    release.set()
+    _wait_until(qtbot, lambda: not findings.busy)
+    assert len(started) == 2 and findings.counts["finished"] == 1
+
+
+def test_closing_with_checks_queued_says_nothing(window, qtbot, slow_checks, capfd):
+    findings = _fresh_counts(window)
+    capfd.readouterr()  # what opening the window printed (the offscreen platform's notes)
+    _wait_until(qtbot, lambda: findings.counts["started"] == 1)
+    findings._start()  # the running check is told to stop, a second queued
+    findings._start()  # the second dropped, a third queued
+    window.close()  # the third dropped
+    _wait_until(qtbot, lambda: not findings.stale_running() and not findings._running)
+    qtbot.wait(50)
+    out, err = capfd.readouterr()
+    assert "Traceback" not in err and "Error" not in err and out == ""
+    assert findings.counts["cancelled"] == 3 and findings.counts["finished"] == 0
+
+
+def test_zoom_moves_no_clip_and_places_each_at_start_times_scale(window, monkeypatch):
+    from timeline.gui.clip_item import ClipItem
+
+    project = edits.new_project(templates=False)
+    project, tile = edits.add_tile(project, generator("sine", 0.2, frequency=20))
+    for lane in range(3):
+        project, track = edits.add_track(project, "drive")
+        for j in range(40):
+            project, _ = edits.add_clip(project, track, tile, 0.37 * j + 0.05 * lane)
+    window.doc.replace("many clips", project)
+    updated: list[str] = []
+    original = ClipItem.update_from
+
+    def counting(item, clip, *args):  # noqa: ANN001
+        updated.append(clip.id)
+        return original(item, clip, *args)
+
+    monkeypatch.setattr(ClipItem, "update_from", counting)
+    for factor in (1.25, 1.25, 0.5, 3.0):
+        window.view.zoom(factor)
+    assert updated == []
+    scale = window.view.lane_geometry.px_per_unit
+    for lane, track in enumerate(window.doc.project.tracks):
+        for clip in track.clips:
+            rect = window.view.clip_item(clip.id).sceneBoundingRect()
+            assert rect.left() + 1 == pytest.approx(clip.start * scale)  # its pixel of outline
+            assert rect.width() - 2 == pytest.approx(clip.duration * scale)
+            at = QPointF(clip.start * scale + 1.0, rect.center().y())
+            assert window.view.scene().clip_at(at).clip.id == clip.id  # and is hit there
+            assert window.view.lane_geometry.lane_at(at.y()) == lane
+
+
+def test_the_decimated_curve_keeps_each_columns_min_and_max():
+    rng = np.random.default_rng(4)
+    data = np.cumsum(rng.standard_normal(100_003))
+    at, values = decimate(data, 640)
+    assert values.size == 2 * 640
+    starts = (np.arange(640) * data.size) // 640  # columns as even as integers allow
+    stops = np.r_[starts[1:], data.size]
+    assert values[0::2].tolist() == [data[a:b].max() for a, b in zip(starts, stops, strict=True)]
+    assert values[1::2].tolist() == [data[a:b].min() for a, b in zip(starts, stops, strict=True)]
+    assert np.all(np.diff(at) >= 0) and at[0] >= 0 and at[-1] < data.size
+    short = np.array([0.0, 1.0, -1.0])
+    assert decimate(short, 640)[1].tolist() == short.tolist()  # fewer samples: all of them
+
+
+def test_dragging_a_clip_does_not_repaint_the_waveform_editor(window, qtbot):
+    win = window
+    canvas = win.editor.canvas
+    painted: list[int] = []
+    original = canvas.paintEvent
+    canvas.paintEvent = lambda event: (painted.append(1), original(event))
+    vp = win.view.viewport()
+    at = clip_point(win, win.ids["c1"])
+    QTest.mousePress(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at)
+    QTest.mouseMove(vp, at + QPoint(5, 0))
+    qtbot.wait(20)  # the pressed clip's tile is shown
+    assert win.editor.tile_id == win.ids["sine"]
+    painted.clear()
+    for step in range(2, 7):
+        QTest.mouseMove(vp, at + QPoint(5 * step, 0))
+        qtbot.wait(5)
+    end = at + QPoint(30, 0)
+    QTest.mouseRelease(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, end)
+    qtbot.wait(20)
+    assert win.doc.project.find_clip(win.ids["c1"])[1].start == pytest.approx(0.5 + 30 / 200)
+    assert painted == []
+
+
+PROBE = """
+import json, os, sys
+from PySide6.QtCore import QEvent, QObject, QTimer
+from timeline.gui.app import launch
+app, window = launch(sys.argv[1])
+seen = {}
+def painted():
+    seen.update(modules=[m for m in ("scipy.signal", "numba") if m in sys.modules])
+    window.close()
+    app.quit()
+class First(QObject):
+    def eventFilter(self, watched, event):
+        if event.type() == QEvent.Type.Paint:
+            watched.removeEventFilter(self)
+            QTimer.singleShot(0, painted)
+        return False
+first = First()
+window.view.viewport().installEventFilter(first)
+app.exec()
+print(json.dumps(seen))
+"""
+
+
+def test_the_first_paint_loads_neither_scipy_signal_nor_numba(tmp_path):
+    env = {**os.environ, "QT_QPA_PLATFORM": "offscreen", "XDG_DATA_HOME": str(tmp_path)}
+    done = subprocess.run(
+        [sys.executable, "-c", PROBE, str(EXAMPLE)],
+        capture_output=True,
+        text=True,
+        env=env,
+        check=True,
+    )
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == {"modules": []}
