@@ -553,7 +553,7 @@ class Mixer:
                 x = self._piece(p, j, grid, stats)
                 if pieces is not None and hi > z:
                     pieces[key] = x
-            elif hi <= z:
+            elif pieces is not None and hi <= z:
                 del pieces[key]
             e = min(z, hi)
             adder(out[a:e], x[a - lo : e - lo], p.weight, scratch)
