@@ -47,6 +47,7 @@ from .player import Player
 from .recent import recent_files, remember
 from .ripple import remove_rippled
 from .ruler import Ruler
+from .scrub import Scrubber
 from .similarity_map import similarity_window
 from .sound_import import SoundImport
 from .step_menus import fill_history, fill_variants
@@ -122,6 +123,7 @@ class MainWindow(QMainWindow):
         self.view = TimelineView(doc)
         self.headers = HeaderColumn(doc)
         self.ruler = Ruler(self.view)
+        self.ruler.scrubber = Scrubber(self.player, lambda: self.doc.project)
         self.tile_palette = Palette(doc)
         self.editor = WaveformEditor(doc)
         self.inspector = Inspector(doc)
@@ -478,7 +480,8 @@ class MainWindow(QMainWindow):
     def _scrubbed(self, u: float) -> None:
         """A scrub let go while playing goes on from there: a time project plays on from that
         time, a position project's knob starts again at that angle (felt under the hand)."""
-        if not self.player.playing:
+        scrubber = self.ruler.scrubber
+        if scrubber is None or not scrubber.was_playing:
             return
         project = self.doc.project
         if project.axis == "position":
@@ -492,6 +495,8 @@ class MainWindow(QMainWindow):
         self.transport.show_position(u, self.doc.project.axis)
 
     def _follow_playhead(self, u: float) -> None:
+        if self.ruler.scrubber is not None and self.ruler.scrubber.active:
+            return  # the playhead is under the mouse while it scrubs
         self.view.scene().set_playhead(u)
         self.view.keep_visible(u)
         self.ruler.update()

@@ -289,7 +289,8 @@ class Player(QObject):
             self.tables.set_project(project)
 
     def stop(self) -> None:
-        """Stop playing and wait for the device to finish its block."""
+        """Stop playing and wait for the device to finish its block; where it got to is not
+        reported after this (the playhead stays where a stop or a scrub left it)."""
         self._halt.set()
         self.sound.stop()
         if self.stream is not None:
@@ -297,6 +298,7 @@ class Player(QObject):
         if self._thread is not None:
             self._thread.join(timeout=2.0)
             self._thread = None
+        self._position = None
 
     def close(self) -> None:
         """Stop, release the device and report nothing more (the window is closing)."""

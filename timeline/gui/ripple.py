@@ -1,5 +1,5 @@
-"""Ripple edit (a mode, Edit > Ripple edit): trimming a clip's end or deleting clips moves the
-later clips of the same track by as much, so the gaps stay as they were (Qt-free)."""
+"""Ripple edit (a mode, Edit > Ripple edit): moving a clip, trimming its end or deleting clips
+moves the later clips of the same track by as much, so the gaps stay as they were (Qt-free)."""
 
 from __future__ import annotations
 
@@ -18,6 +18,17 @@ def later_clips(
     skip = set(exclude)
     track = project.track(track_id)
     return [c.id for c in track.clips if c.start >= at - EPS and c.id not in skip]
+
+
+def followers(project: Project, clip_ids: Iterable[str]) -> list[str]:
+    """The clips that follow moved clips in ripple mode: on each track holding moved clips, the
+    others that start at or after the earliest end of a moved clip there (linear in clips)."""
+    ids = set(clip_ids)
+    ends: dict[str, float] = {}
+    for clip_id in ids:
+        track, clip = project.find_clip(clip_id)
+        ends[track.id] = min(ends.get(track.id, clip.end), clip.end)
+    return [c for track_id, end in ends.items() for c in later_clips(project, track_id, end, ids)]
 
 
 def trim_end_rippled(project: Project, clip_id: str, end: float) -> Project:

@@ -1,9 +1,9 @@
 """The ruler above the lanes: seconds, or degrees in position mode, with markers and the loop.
 
 Click to place the playhead and cursor; drag to set the loop region (REAPER's ruler drag); drag
-the playhead's head to scrub; click a marker's flag to show it in the inspector, drag it to move
-it, double-click it to rename it in place; right-click a marker to rename or delete it, or the
-loop to clear it.
+the playhead to scrub (the Scrubber, when given one, plays what is under it); click a marker's
+flag to show it in the inspector, drag it to move it, double-click it to rename it in place;
+right-click a marker to rename or delete it, or the loop to clear it.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from timeline.edits import markers
 
 from .geometry import axis_text, display_factor, display_unit, format_tick, nice_step
 from .inspector_marker import move_marker_tracked
+from .scrub import Scrubber
 from .timeline_view import TimelineView
 
 HEIGHT = 40
@@ -47,7 +48,9 @@ class Ruler(QWidget):
         self._renaming: int | None = None
         self._press: float | None = None  # x where the left button went down
         self._marker: int | None = None  # index of the marker being dragged
-        self._scrub = False  # dragging the playhead rather than a loop region
+        self._scrub = False  # the press was on the playhead: a drag scrubs it
+        self._scrubbing = False  # the playhead has moved under the mouse since the press
+        self.scrubber: Scrubber | None = None  # plays what is under a scrubbed playhead
         self._key: object = None
         self._base = None
         view.zoomed.connect(self.update)
@@ -133,11 +136,16 @@ class Ruler(QWidget):
             i = self.marker_at(pos.x(), pos.y())
             self.setToolTip(self._tip(i, pos.x()))
             return
-        if abs(pos.x() - self._press) < 3:
+        if abs(pos.x() - self._press) < 3 and not self._scrubbing:
             return
         u0, u = self.u_of(self._press), self.u_of(pos.x())
         if self._scrub:
+            if self.scrubber is not None and not self._scrubbing:
+                self.scrubber.begin()
+            self._scrubbing = True
             self.place(u)  # the playhead, the cursor and the readout follow
+            if self.scrubber is not None:
+                self.scrubber.move(u)
             return
         if self._marker is not None:
             index = self.doc.apply(
@@ -166,9 +174,13 @@ class Ruler(QWidget):
         if event.button() != Qt.MouseButton.LeftButton or self._press is None:
             return
         press, self._press = self._press, None
-        if self._scrub and abs(event.position().x() - press) >= 3:
-            self._scrub = False
-            self.scrubbed.emit(self.u_of(event.position().x()))
+        if self._scrubbing:
+            self._scrub = self._scrubbing = False
+            u = self.u_of(event.position().x())
+            self.place(u)
+            if self.scrubber is not None:
+                self.scrubber.end()
+            self.scrubbed.emit(u)
             return
         if abs(event.position().x() - press) >= 3:
             return
@@ -270,7 +282,10 @@ class Ruler(QWidget):
                 "double-click to rename, right-click to delete"
             )
         if abs(x - self.x_of(self.view.scene().playhead_u)) <= PLAYHEAD_GRAB_PX:
-            return "the playhead: drag it to scrub (playing goes on from where you let go)"
+            return (
+                "the playhead: drag it to scrub, feeling what is under it "
+                "(playing goes on from where you let go)"
+            )
         return (
             f"{axis_text(self.u_of(x), axis)}: click to move the playhead, "
             "drag to set the loop region"

@@ -1,4 +1,5 @@
-"""Drag a clip's body along its track and across tracks (the new track gives it meaning)."""
+"""Drag a clip's body along its track and across tracks (the new track gives it meaning); in
+ripple mode the later clips of its track move along by as much."""
 
 from __future__ import annotations
 
@@ -9,12 +10,14 @@ from timeline.edits.vibration import with_emphasis
 from timeline.model import Project
 
 from ..geometry import axis_text
+from ..ripple import followers
 from .base import Gesture
 
 
 class MoveGesture(Gesture):
     """Move the pressed clip, and the other selected clips (and a vibration design's emphasis
-    clips, timeline.edits.vibration.emphasis_of) with it in time."""
+    clips, timeline.edits.vibration.emphasis_of) with it in time; with ripple edit on, the
+    clips after them on their tracks follow by the same time (they stay on their tracks)."""
 
     label = "move clip"
 
@@ -23,6 +26,8 @@ class MoveGesture(Gesture):
         self.clip_id = clip_id
         carried = with_emphasis(self.base, [clip_id, *self.doc.selected_clips])
         self.others = [c for c in carried if c != clip_id]
+        if view.ripple:
+            self.others += followers(self.base, carried)
         track, self.clip = self.base.find_clip(clip_id)
         self.track_id = track.id
 
