@@ -82,6 +82,14 @@ TORQUE_TOLERANCE = 1e-6  # relative: the float32 limit itself is a valid report
 MAX_REPORTED_SPEED = 1e6  # rad/s: beyond this a report is corrupt, not a knob turning
 
 
+def _sizes(info: p.InfoPayload, lead_s: float, block_s: float) -> tuple[int, int]:
+    """Samples per block (at most the device's largest) and the lead: at least two blocks, at
+    most the buffer's capacity."""
+    block_n = max(1, min(round(block_s * info.rate_hz), info.max_block))
+    lead = max(round(lead_s * info.rate_hz), 2 * block_n)
+    return block_n, min(lead, info.buffer_capacity)
+
+
 class Stream:
     """One play: START, blocks paced by telemetry, END, and the telemetry it gathered."""
 
@@ -94,9 +102,7 @@ class Stream:
         self.rate = info.rate_hz
         self.limits = info.channel_limits(mask)
         self.limits[0] = np.float32(min(torque_limit, info.max_torque))
-        self.block_n = max(1, min(round(block_s * self.rate), info.max_block))
-        lead = max(round(lead_s * self.rate), 2 * self.block_n)
-        self.lead_n = min(lead, info.buffer_capacity)
+        self.block_n, self.lead_n = _sizes(info, lead_s, block_s)
         if self.lead_n - self.block_n < info.report_samples:
             raise UsbDeviceError(
                 f"the USB haptic device's buffer ({info.buffer_capacity} samples) cannot hold a "
@@ -104,12 +110,18 @@ class Stream:
             )
         self.zeroed = 0
         self.clamped = 0
+        self.underruns = 0  # samples the device played from an empty queue, as last reported
         self.lateness = LatenessMeter(self.lead_n / self.rate)
         self._first_write: float | None = None  # perf_counter of the first block written
         self._sent: list[np.ndarray] = []
         self._received: list[np.ndarray] = []
         self._n_sent = 0
         self._n_received = 0
+
+    @staticmethod
+    def lead_seconds(info: p.InfoPayload, lead_s: float, block_s: float) -> float:
+        """The lead a stream to this device keeps (s): the one asked for, within its buffer."""
+        return _sizes(info, lead_s, block_s)[1] / info.rate_hz
 
     def run(
         self,
@@ -166,6 +178,7 @@ class Stream:
                 f"the USB haptic device's telemetry jumped from sample {self._n_received} "
                 f"to {report.first_sample}"
             )
+        self.underruns = report.underruns
         self._check_samples(report.samples)
         self._received.append(report.samples)
         self._n_received += len(report.samples)
