@@ -137,6 +137,13 @@ class UsbKnob(Device):
             self.link.close()
             self.link = None
 
+    def _handover_margin(self) -> float:
+        """How much earlier than the device's lead a live stream hands blocks over (s): to a
+        stream in its own process two blocks more, one it reads ahead (to mark the stream's end)
+        and one report period it may wait before writing; in this process none (the stream
+        pulls each block when it writes it)."""
+        return 2 * self.block if self.opener is not None else 0.0
+
     def _wire_info(self) -> p.InfoPayload:
         self.open()
         return self.remote.info if self.remote is not None else self.link.info
@@ -154,7 +161,7 @@ class UsbKnob(Device):
                 _shown(w.encoder_resolution),
                 ".".join(str(x) for x in w.firmware),
                 w.dynamics(),
-                lead=Stream.lead_seconds(w, self.lead, self.block),
+                lead=Stream.lead_seconds(w, self.lead, self.block) + self._handover_margin(),
             )
         return self._info
 

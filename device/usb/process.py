@@ -176,7 +176,7 @@ def _play(
     try:
         if hand is not None and hasattr(backend, "set_hand"):
             backend.set_hand(hand)
-        stream = Stream(link, mask, limit, lead, block)
+        stream = Stream(link, mask, limit, lead, block, start_block_s=lead / 2)
         chunker = Chunker(blocks, p.channel_names(mask))
         link.set_limits(float(stream.limits[0]), watchdog_ms)
 

@@ -94,8 +94,17 @@ class Stream:
     """One play: START, blocks paced by telemetry, END, and the telemetry it gathered."""
 
     def __init__(
-        self, link: Link, mask: int, torque_limit: float, lead_s: float, block_s: float
+        self,
+        link: Link,
+        mask: int,
+        torque_limit: float,
+        lead_s: float,
+        block_s: float,
+        start_block_s: float | None = None,
     ) -> None:
+        """`start_block_s`: the blocks that fill the lead at START go out this long (at most the
+        device's largest block; default `block_s`): fewer transfers, so a host descheduled in
+        the middle of them finds more queued."""
         info = link.info
         self.link = link
         self.mask = mask
@@ -103,6 +112,8 @@ class Stream:
         self.limits = info.channel_limits(mask)
         self.limits[0] = np.float32(min(torque_limit, info.max_torque))
         self.block_n, self.lead_n = _sizes(info, lead_s, block_s)
+        start = block_s if start_block_s is None else start_block_s
+        self.start_n = max(self.block_n, _sizes(info, lead_s, start)[0])
         if self.lead_n - self.block_n < info.report_samples:
             raise UsbDeviceError(
                 f"the USB haptic device's buffer ({info.buffer_capacity} samples) cannot hold a "
@@ -139,7 +150,9 @@ class Stream:
         self.link.start(self.mask)
         while not end or self._n_received < self._n_sent:
             while not end and fill + since + self.block_n <= self.lead_n:
-                n = p.block_samples(chunker.available(self.block_n), self.mask, self.block_n)
+                size = self.block_n if self._n_received else self.start_n  # filling the lead
+                size = max(self.block_n, min(size, self.lead_n - fill - since))
+                n = p.block_samples(chunker.available(size), self.mask, size)
                 rows, end = chunker.take(n)
                 self._count_lateness()
                 self.link.write_block(p.Block(seq, self.mask, self._safe(rows), end))
