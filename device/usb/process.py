@@ -67,13 +67,18 @@ class StreamProcess:
         try:
             message = self._from_child.recv()
         except (EOFError, OSError):
-            raise UsbDeviceError(
-                f"the USB stream process ended unexpectedly (exit code {self.process.exitcode}) "
-                f"while {what}, so playback stopped"
-            ) from None
+            raise self._gone(what) from None
         if message[0] == "error":
             raise message[1]
         return message
+
+    def _gone(self, what: str) -> UsbDeviceError:
+        """The sentence for a child that is not there any more."""
+        self.process.join(timeout=1.0)
+        return UsbDeviceError(
+            f"the USB stream process ended unexpectedly (exit code {self.process.exitcode}) "
+            f"while {what}, so playback stopped"
+        )
 
     def play(
         self,
@@ -87,11 +92,15 @@ class StreamProcess:
         torque limit, lead, block, watchdog ms, hand); the telemetry, the layers the device does
         not render, and the samples it played from an empty queue, as its last report said."""
         with self._lock:
-            self._to_child.send(("play", *settings, monitor is not None))
-            done = threading.Event()
+            try:
+                self._to_child.send(("play", *settings, monitor is not None))
+            except OSError:
+                raise self._gone("streaming") from None
+            done, failed = threading.Event(), []
             feeder = threading.Thread(
-                target=self._feed, args=(blocks, done), daemon=True, name="usb stream feeder"
-            )
+                target=self._feed, args=(blocks, done, failed), daemon=True,
+                name="usb stream feeder",
+            )  # fmt: skip
             feeder.start()
             try:
                 while True:
@@ -101,14 +110,19 @@ class StreamProcess:
                     elif kind == "progress" and progress:
                         progress(payload[0], total)
                     elif kind == "done":
-                        return payload[0], payload[1], payload[2]
+                        break
             finally:
                 done.set()
                 feeder.join()
+                if failed:  # the blocks' source failed (a render): that is what went wrong
+                    raise failed[0]
+            return payload[0], payload[1], payload[2]
 
-    def _feed(self, blocks: Iterable[CoefficientBlock], done: threading.Event) -> None:
+    def _feed(
+        self, blocks: Iterable[CoefficientBlock], done: threading.Event, failed: list
+    ) -> None:
         """Hand the blocks over until the play ends (a list at once, else each as it comes),
-        then the end of the stream."""
+        then the end of the stream; what the blocks' source raised goes into `failed`."""
         try:
             if isinstance(blocks, list):
                 self._to_child.send(("blocks", blocks))
@@ -117,6 +131,10 @@ class StreamProcess:
                     if done.is_set():
                         break
                     self._to_child.send(("blocks", [block]))
+        except (OSError, ValueError):
+            pass  # the child is gone: the play's receiving end says so
+        except BaseException as exc:  # noqa: BLE001 - raised again on the playing thread
+            failed.append(exc)
         finally:
             with suppress(OSError, ValueError):
                 self._to_child.send(("end",))
