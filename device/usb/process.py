@@ -131,7 +131,7 @@ class StreamProcess:
                     if done.is_set():
                         break
                     self._to_child.send(("blocks", [block]))
-        except (OSError, ValueError):
+        except OSError:
             pass  # the child is gone: the play's receiving end says so
         except BaseException as exc:  # noqa: BLE001 - raised again on the playing thread
             failed.append(exc)
