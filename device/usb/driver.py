@@ -13,6 +13,7 @@ import numpy as np
 from device.usb import protocol as p
 from device.usb.errors import UsbDeviceError
 from device.usb.link import Link, default_backend, find_devices
+from device.usb.process import StreamProcess
 from device.usb.streamer import Chunker, Stream
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
@@ -28,6 +29,13 @@ from timeline.plugins.device_protocol import (
 
 EMULATE_ENV = "HAPTIC_TIMELINE_USB_EMULATE"
 REALTIME = "realtime"  # the value of EMULATE_ENV that runs the emulated firmware on the wall clock
+LEAD_S = 0.030  # the protocol's default lead (docs/usb-protocol.md, section 4)
+# The lead of a stream in a process of its own: blocks are handed to it this far ahead of their
+# play and it keeps the device's queue this full, so a host stalled for less (its interpreter
+# lock held by the GUI, a render) and a streaming process woken late (a loaded machine) lose
+# nothing; an edit is felt this much later.
+PROCESS_LEAD_S = 0.100
+WATCHDOG_MARGIN_MS = 20  # the default watchdog: the lead plus a report and a block (50 ms at 30)
 
 
 def _shown(x: float) -> float:
@@ -43,8 +51,12 @@ class UsbKnob(Device):
     emulated device instead, so everything works without hardware; `realtime=True` (or
     HAPTIC_TIMELINE_USB_EMULATE=realtime) runs its firmware on the wall clock, so a late host
     underruns it as it would a real knob (otherwise it plays as fast as the host streams).
-    `lead` and `block` are the seconds streamed ahead of the device and per transfer;
-    `max_torque` (N*m) lowers the device's own limit.
+    `lead` and `block` are the seconds streamed ahead of the device (default 30 ms, 100 ms
+    from a process of its own) and per transfer; `watchdog_ms` is the device's watchdog (default
+    the lead plus 20 ms); `max_torque` (N*m) lowers the device's own limit. `process`: stream
+    from a process of its own (device.usb.process), so the host's other threads cannot delay a
+    transfer; by default when the device runs on the wall clock (hardware, or `realtime`) and
+    no backend object is given.
     """
 
     def __init__(
@@ -54,22 +66,39 @@ class UsbKnob(Device):
         serial: str | None = None,
         backend: Any = None,
         emulate: bool | None = None,
-        lead: float = 0.030,
+        lead: float | None = None,
         block: float = 0.010,
         timeout_ms: int = 1000,
-        watchdog_ms: int = 50,
+        watchdog_ms: int | None = None,
         max_torque: float | None = None,
         realtime: bool | None = None,
+        process: bool | None = None,
     ) -> None:
-        if backend is None and (_emulating() if emulate is None else emulate):
+        emulated = backend is None and (_emulating() if emulate is None else emulate)
+        if emulated:
             realtime = os.environ.get(EMULATE_ENV, "") == REALTIME if realtime is None else realtime
-            backend = _emulated_backend(vid, pid, realtime)
+        # A device on the wall clock (hardware, or the emulation in real time) is streamed from
+        # a process of its own unless told otherwise; a given backend object is this process's.
+        if process is None:
+            process = backend is None and (realtime or not emulated)
+        self.opener: tuple | None = None
+        if process:
+            self.opener = (_open_emulated if emulated else _open_hardware,
+                           (vid, pid, serial, timeout_ms, bool(realtime)))  # fmt: skip
+        elif emulated:
+            backend = _emulated_backend(vid, pid, bool(realtime))
         self.vid, self.pid, self.serial = int(vid), int(pid), serial
         self.backend = backend
+        lead = (PROCESS_LEAD_S if process else LEAD_S) if lead is None else lead
         self.lead, self.block = float(lead), float(block)
+        watchdog_ms = (
+            round(self.lead * 1000) + WATCHDOG_MARGIN_MS if watchdog_ms is None else watchdog_ms
+        )
         self.timeout_ms, self.watchdog_ms = int(timeout_ms), int(watchdog_ms)
         self.max_torque = max_torque
         self.link: Link | None = None
+        self.remote: StreamProcess | None = None
+        self.underruns = 0  # samples played from an empty queue in the last play (its last report)
         self._info: DeviceInfo | None = None
 
     @classmethod
@@ -86,27 +115,44 @@ class UsbKnob(Device):
         return [_describe(dev) for dev in found]
 
     def open(self) -> None:
-        if self.link is None:
+        if self.opener is not None:
+            if self.remote is None:
+                self.remote = StreamProcess(*self.opener)
+        elif self.link is None:
             backend = self.backend if self.backend is not None else default_backend()
             self.link = Link.open(self.vid, self.pid, backend, self.serial, self.timeout_ms)
 
     def warm_up(self) -> None:
-        """An emulated device loads its compiled servo loop; hardware needs nothing."""
+        """An emulated device loads its compiled servo loop (in its process, when it has one,
+        as it opens); hardware needs nothing."""
         if hasattr(self.backend, "warm_up"):
             self.backend.warm_up()
 
     def close(self) -> None:
+        if self.remote is not None:
+            self.remote.close()
+            self.remote = None
         if self.link is not None:
             self.link.abort()
             self.link.close()
             self.link = None
 
+    def _handover_margin(self) -> float:
+        """How much earlier than the device's lead a live stream hands blocks over (s): to a
+        stream in its own process two blocks more, one it reads ahead (to mark the stream's end)
+        and one report period it may wait before writing; in this process none (the stream
+        pulls each block when it writes it)."""
+        return 2 * self.block if self.opener is not None else 0.0
+
+    def _wire_info(self) -> p.InfoPayload:
+        self.open()
+        return self.remote.info if self.remote is not None else self.link.info
+
     @property
     def info(self) -> DeviceInfo:
         """What the device declared when it was opened (opening it if it never was)."""
         if self._info is None:
-            self.open()
-            w = self.link.info
+            w = self._wire_info()
             self._info = DeviceInfo(
                 f"usb {self.vid:04x}:{self.pid:04x}",
                 p.KINDS[w.kind],
@@ -115,6 +161,7 @@ class UsbKnob(Device):
                 _shown(w.encoder_resolution),
                 ".".join(str(x) for x in w.firmware),
                 w.dynamics(),
+                lead=Stream.lead_seconds(w, self.lead, self.block) + self._handover_margin(),
             )
         return self._info
 
@@ -131,18 +178,44 @@ class UsbKnob(Device):
                 "the USB protocol streams time-mode coefficient blocks; play a position-mode "
                 "project on the sim device"
             )
-        self.open()
+        info = self._wire_info()
+        blocks = list(program) if isinstance(program, Sequence) else program
+        total = sum(map(len, blocks)) / info.rate_hz if isinstance(blocks, list) else None
+        rest = iter(blocks)
+        first = next(rest, None)
+        mask = self._mask(info, first)
+        limit = min(self.max_torque or np.inf, info.max_torque)
+        program_blocks = chain([] if first is None else [first], rest)
+        if self.remote is not None:
+            settings = (mask, limit, self.lead, self.block, self.watchdog_ms, hand)
+            handed = blocks if isinstance(blocks, list) else program_blocks  # a list goes at once
+            tel, dropped, self.underruns = self.remote.play(
+                handed, settings, total, progress, monitor
+            )
+        else:
+            here = (mask, limit, hand, total, progress, monitor)
+            tel, dropped = self._play_here(program_blocks, *here)
+        if dropped:
+            names = ", ".join(sorted(dropped))
+            tel = _warn(tel, f"the device does not render the {names} layers; they were not sent")
+        return tel
+
+    def _play_here(
+        self,
+        blocks: Iterable[CoefficientBlock],
+        mask: int,
+        limit: float,
+        hand: Hand | None,
+        total: float | None,
+        progress: Progress | None,
+        monitor: Monitor | None,
+    ) -> tuple[Telemetry, set[str]]:
+        """Stream from this process's thread (a backend given, or told so)."""
         link = self.link
         if hand is not None and hasattr(link.dev.backend, "set_hand"):
             link.dev.backend.set_hand(hand)  # only an emulated device has a hand to set
-        blocks = list(program) if isinstance(program, Sequence) else program
-        total = sum(map(len, blocks)) / link.info.rate_hz if isinstance(blocks, list) else None
-        rest = iter(blocks)
-        first = next(rest, None)
-        mask = self._mask(first)
-        limit = min(self.max_torque or np.inf, link.info.max_torque)
         stream = Stream(link, mask, limit, self.lead, self.block)
-        chunker = Chunker(chain([] if first is None else [first], rest), p.channel_names(mask))
+        chunker = Chunker(blocks, p.channel_names(mask))
         try:
             link.set_limits(float(stream.limits[0]), self.watchdog_ms)
             stream.run(chunker, progress, total, monitor)
@@ -150,17 +223,17 @@ class UsbKnob(Device):
         except BaseException:
             link.abort()
             raise
+        finally:
+            self.underruns = stream.underruns
         tel = stream.telemetry()
         if getattr(link.dev.backend, "realtime", True):  # an emulated device may not be
             tel = replace(tel, lateness=stream.lateness.counts())
-        if chunker.dropped:
-            names = ", ".join(sorted(chunker.dropped))
-            tel = _warn(tel, f"the device does not render the {names} layers; they were not sent")
-        return tel
+        return tel, chunker.dropped
 
-    def _mask(self, first: CoefficientBlock | None) -> int:
+    @staticmethod
+    def _mask(info: p.InfoPayload, first: CoefficientBlock | None) -> int:
         """The channels to stream: d alone to a vibrotactile device, else d, k, b (and m)."""
-        channels = self.link.info.channels
+        channels = info.channels
         if not channels & p.CH_K:
             return p.CH_D
         if first is not None and first.m is not None:
@@ -172,6 +245,18 @@ class UsbKnob(Device):
 
 def _emulating() -> bool:
     return os.environ.get(EMULATE_ENV, "") not in ("", "0")
+
+
+def _open_hardware(vid: int, pid: int, serial: str | None, timeout_ms: int, _: bool):
+    """In the stream's process: the link to a device on the bus, and its backend."""
+    backend = default_backend()
+    return Link.open(vid, pid, backend, serial, timeout_ms), backend
+
+
+def _open_emulated(vid: int, pid: int, serial: str | None, timeout_ms: int, realtime: bool):
+    """In the stream's process: the link to an emulated device, and its backend."""
+    backend = _emulated_backend(vid, pid, realtime)
+    return Link.open(vid, pid, backend, serial, timeout_ms), backend
 
 
 def _emulated_backend(vid: int, pid: int, realtime: bool = False) -> Any:

@@ -194,9 +194,15 @@ class EmulatedBackend(usb.backend.IBackend):
     def warm_up(self) -> None:
         """Load the firmware's compiled servo loop, so the wall clock does not run on while it
         loads during the first block."""
+        n = 8
+        small = np.full(n, 1e-3)
         for dev in self.devices:
             physics = KnobPhysics(dev.knob.physics.params)
-            physics.run_block(CoefficientBlock.zeros(1))
+            physics.start(dev.knob.hand)
+            # A spring, a damper (and a mass): the stability checks each block runs compile
+            # their loop model for each combination on its first use.
+            for m in (None, np.full(n, 1e-7)):
+                physics.run_block(CoefficientBlock(small, small, small * 1e-2, m))
             physics.run_idle(1)
 
     @property

@@ -82,21 +82,38 @@ TORQUE_TOLERANCE = 1e-6  # relative: the float32 limit itself is a valid report
 MAX_REPORTED_SPEED = 1e6  # rad/s: beyond this a report is corrupt, not a knob turning
 
 
+def _sizes(info: p.InfoPayload, lead_s: float, block_s: float) -> tuple[int, int]:
+    """Samples per block (at most the device's largest) and the lead: at least two blocks, at
+    most the buffer's capacity."""
+    block_n = max(1, min(round(block_s * info.rate_hz), info.max_block))
+    lead = max(round(lead_s * info.rate_hz), 2 * block_n)
+    return block_n, min(lead, info.buffer_capacity)
+
+
 class Stream:
     """One play: START, blocks paced by telemetry, END, and the telemetry it gathered."""
 
     def __init__(
-        self, link: Link, mask: int, torque_limit: float, lead_s: float, block_s: float
+        self,
+        link: Link,
+        mask: int,
+        torque_limit: float,
+        lead_s: float,
+        block_s: float,
+        start_block_s: float | None = None,
     ) -> None:
+        """`start_block_s`: the blocks that fill the lead at START go out this long (at most the
+        device's largest block; default `block_s`): fewer transfers, so a host descheduled in
+        the middle of them finds more queued."""
         info = link.info
         self.link = link
         self.mask = mask
         self.rate = info.rate_hz
         self.limits = info.channel_limits(mask)
         self.limits[0] = np.float32(min(torque_limit, info.max_torque))
-        self.block_n = max(1, min(round(block_s * self.rate), info.max_block))
-        lead = max(round(lead_s * self.rate), 2 * self.block_n)
-        self.lead_n = min(lead, info.buffer_capacity)
+        self.block_n, self.lead_n = _sizes(info, lead_s, block_s)
+        start = block_s if start_block_s is None else start_block_s
+        self.start_n = max(self.block_n, _sizes(info, lead_s, start)[0])
         if self.lead_n - self.block_n < info.report_samples:
             raise UsbDeviceError(
                 f"the USB haptic device's buffer ({info.buffer_capacity} samples) cannot hold a "
@@ -104,12 +121,18 @@ class Stream:
             )
         self.zeroed = 0
         self.clamped = 0
+        self.underruns = 0  # samples the device played from an empty queue, as last reported
         self.lateness = LatenessMeter(self.lead_n / self.rate)
         self._first_write: float | None = None  # perf_counter of the first block written
         self._sent: list[np.ndarray] = []
         self._received: list[np.ndarray] = []
         self._n_sent = 0
         self._n_received = 0
+
+    @staticmethod
+    def lead_seconds(info: p.InfoPayload, lead_s: float, block_s: float) -> float:
+        """The lead a stream to this device keeps (s): the one asked for, within its buffer."""
+        return _sizes(info, lead_s, block_s)[1] / info.rate_hz
 
     def run(
         self,
@@ -127,7 +150,9 @@ class Stream:
         self.link.start(self.mask)
         while not end or self._n_received < self._n_sent:
             while not end and fill + since + self.block_n <= self.lead_n:
-                n = p.block_samples(chunker.available(self.block_n), self.mask, self.block_n)
+                size = self.block_n if self._n_received else self.start_n  # filling the lead
+                size = max(self.block_n, min(size, self.lead_n - fill - since))
+                n = p.block_samples(chunker.available(size), self.mask, size)
                 rows, end = chunker.take(n)
                 self._count_lateness()
                 self.link.write_block(p.Block(seq, self.mask, self._safe(rows), end))
@@ -166,6 +191,7 @@ class Stream:
                 f"the USB haptic device's telemetry jumped from sample {self._n_received} "
                 f"to {report.first_sample}"
             )
+        self.underruns = report.underruns
         self._check_samples(report.samples)
         self._received.append(report.samples)
         self._n_received += len(report.samples)

@@ -8,7 +8,8 @@ Chunks are rendered one ahead on a worker thread while the current one plays, so
 own thread only slices blocks out of them (a chunk of a 20k-clip project takes 10-30 ms to
 render, as long as the lead); an edit re-renders the current chunk at once.
 
-A paced stream hands each block over `lead` before its first sample plays (its clock starts when
+A paced stream hands each block over `lead` before its first sample plays (the device's lead: 30 ms
+for the sim, 100 ms for a USB knob streaming from its own process; its clock starts when
 the first block is handed over, so a slow first render does not make the next blocks burst) and
 counts the blocks it hands over later than that lead (LatenessMeter): what a device with a wall
 clock feels as an underrun.
@@ -85,14 +86,17 @@ class LiveStream:
         quality: str = DEFAULT_QUALITY,
         mixer: Mixer | None = None,
         asked: float | None = None,
+        lead: float = LEAD_SECONDS,
     ) -> None:
         """`mixer` may be one kept warm between plays; `asked` is the perf_counter time Play was
-        pressed (the first block's latency counts from it; default: now)."""
+        pressed (the first block's latency counts from it; default: now); `lead` how far ahead
+        of its play a block is handed over (the device's DeviceInfo.lead)."""
         self.rate, self.start, self.stop, self.loop = rate, start, max(stop, start), loop
         self.tracks = None if tracks is None else list(tracks)
         self.paced, self.quality = paced, quality
         self.mixer = mixer or Mixer(cache_bytes=256 * 2**20)
-        self.lateness = LatenessMeter(LEAD_SECONDS, asked)
+        self.lead = lead
+        self.lateness = LatenessMeter(lead, asked)
         self.state = StreamState(position=start)
         self._project = project
         self._chunk: _Chunk | None = None  # playing
@@ -132,12 +136,12 @@ class LiveStream:
                     return
                 t = self.start
             count = min(n, max(1, round((self.stop - t) * self.rate)))
-            slot = None if clock is None or not self.paced else clock + played - LEAD_SECONDS
+            slot = None if clock is None or not self.paced else clock + played - self.lead
             version, block = self._block(t, count, slot)
             if self.paced:
                 now = time.perf_counter()
                 clock = now if clock is None else clock
-                delay = clock + played - LEAD_SECONDS - now
+                delay = clock + played - self.lead - now
                 if delay > 0:
                     time.sleep(delay)
                     now = time.perf_counter()

@@ -180,9 +180,11 @@ class Player(QObject):
                     raise HapticTimelineError("nothing to play: the project has no clips there")
                 warming = self._warm is not None and self._warm.is_alive()
                 mixer = None if warming else self._mixer  # one thread per mixer at a time
+                info = device.info
                 self.stream = LiveStream(
-                    project, device.info.rate, start, stop, loop, tracks, mixer=mixer, asked=asked
-                )
+                    project, info.rate, start, stop, loop, tracks, mixer=mixer, asked=asked,
+                    lead=info.lead,
+                )  # fmt: skip
                 self.stream.on_block = self._at
                 program, hand = self.stream, self.hand
         except HapticTimelineError as exc:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from timeline.errors import DeviceError
 from timeline.plugins.device_protocol.dynamics import Actuator, Dynamics
+from timeline.plugins.device_protocol.lateness import LEAD_SECONDS
 
 KINDS = ("kinesthetic", "vibrotactile")
 
@@ -17,7 +18,8 @@ class DeviceInfo:
 
     The optional declarations feed the design checks (timeline/limits/): `dynamics` (rotor and
     servo loop, kinesthetic devices), `slew` (largest output change per second, in max_output
-    units per second) and `actuator` (a vibrotactile device's frequency response).
+    units per second) and `actuator` (a vibrotactile device's frequency response). `lead` is how
+    far ahead of its playing (s) a live stream hands the device its blocks: what it keeps queued.
     """
 
     name: str
@@ -29,13 +31,14 @@ class DeviceInfo:
     dynamics: Dynamics | None = None
     slew: float | None = None
     actuator: Actuator | None = None
+    lead: float = LEAD_SECONDS
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
             raise DeviceError(
                 f"a device's kind must be kinesthetic or vibrotactile, not {self.kind!r}"
             )
-        for name in ("rate", "max_output"):
+        for name in ("rate", "max_output", "lead"):
             value = float(getattr(self, name))
             if not math.isfinite(value) or value <= 0:
                 raise DeviceError(
