@@ -44,10 +44,11 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_tile_edits.py",
             "tests/core/test_placement.py",
             "tests/core/test_edits_behaviour.py",
+            "tests/core/test_merge_placement.py",
         ],  # fmt: skip
     ),
     "projectfile": (
-        ["timeline/files/projectfile.py"],
+        ["timeline/files/projectfile.py", "timeline/files/project_fields.py"],
         [
             "tests/core/test_projectfile.py",
             "tests/core/test_projectfile_bytes.py",
