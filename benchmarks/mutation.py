@@ -54,6 +54,8 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_projectfile_bytes.py",
             "tests/core/test_old_schemas.py",
             "tests/core/test_projectfile_roundtrip.py",
+            "tests/core/test_projectfile_messages.py",
+            "tests/core/test_hostile_projects.py",
         ],  # fmt: skip
     ),
 }
