@@ -45,6 +45,11 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_placement.py",
             "tests/core/test_edits_behaviour.py",
             "tests/core/test_merge_placement.py",
+            "tests/core/test_markers.py",
+            "tests/core/test_step_names.py",
+            "tests/core/test_tile_params.py",
+            "tests/core/test_vibration.py",
+            "tests/core/test_context_track.py",
         ],  # fmt: skip
     ),
     "projectfile": (
