@@ -50,6 +50,7 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_tile_params.py",
             "tests/core/test_vibration.py",
             "tests/core/test_context_track.py",
+            "tests/core/test_tile_shape_behaviour.py",
         ],  # fmt: skip
     ),
     "projectfile": (
