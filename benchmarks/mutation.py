@@ -51,6 +51,7 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_vibration.py",
             "tests/core/test_context_track.py",
             "tests/core/test_tile_shape_behaviour.py",
+            "tests/core/test_edits_more_behaviour.py",
         ],  # fmt: skip
     ),
     "projectfile": (
