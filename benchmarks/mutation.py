@@ -52,6 +52,7 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_context_track.py",
             "tests/core/test_tile_shape_behaviour.py",
             "tests/core/test_edits_more_behaviour.py",
+            "tests/core/test_step_names_more.py",
         ],  # fmt: skip
     ),
     "projectfile": (
