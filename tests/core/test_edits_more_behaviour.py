@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from timeline import edits
+from timeline.edits.placement import into_gap
 from timeline.errors import EditError
 from timeline.model import Fade, Project
 from timeline.tiles import SampledTile
@@ -74,3 +75,16 @@ def test_a_merged_tile_is_named_merged() -> None:
     merged, tile = edits.merge_clips(project, [clip])
     assert merged.tile(tile).name == "merged"
     assert merged.tile(tile).data.tolist() == list(np.arange(1.0, 11.0))
+
+
+def test_new_clips_move_together_into_the_first_gap_that_holds_them() -> None:
+    """An old clip covers 0-0.01 s; two new ones at 0.005 and 0.012 s (0.017 s of material)
+    move by 0.005 s, so the first starts where the old one ends, and keep their spacing."""
+    project, track, old = _project()
+    tile = project.find_clip(old)[1].tile_id
+    project, a = edits.add_clip(project, track, tile, 0.005)
+    project, b = edits.add_clip(project, track, tile, 0.012)
+    moved = into_gap(project, [a, b], 0.005)
+    assert moved.find_clip(a)[1].start == pytest.approx(0.01, abs=1e-12)
+    assert moved.find_clip(b)[1].start == pytest.approx(0.017, abs=1e-12)
+    assert moved.find_clip(old)[1].start == 0.0
