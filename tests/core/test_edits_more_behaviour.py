@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 
 from timeline import edits
+from timeline.edits import tile_params
 from timeline.edits.placement import into_gap
 from timeline.errors import EditError
 from timeline.model import Fade, Project
-from timeline.tiles import SampledTile
+from timeline.tiles import SampledTile, SplineTile
 
 RATE = 1000.0
 
@@ -88,3 +89,11 @@ def test_new_clips_move_together_into_the_first_gap_that_holds_them() -> None:
     assert moved.find_clip(a)[1].start == pytest.approx(0.01, abs=1e-12)
     assert moved.find_clip(b)[1].start == pytest.approx(0.017, abs=1e-12)
     assert moved.find_clip(old)[1].start == 0.0
+
+
+def test_a_longer_spline_spreads_its_points_in_proportion() -> None:
+    project = edits.new_project(rate=RATE, templates=False)
+    project, tile = edits.add_tile(project, SplineTile(((0.0, 0.0), (0.25, 1.0), (0.5, 0.0)), 0.5))
+    longer = tile_params.set_length(project, tile, 2.0)
+    assert longer.tile(tile).points == ((0.0, 0.0), (1.0, 1.0), (2.0, 0.0))
+    assert longer.tile(tile).duration == 2.0
