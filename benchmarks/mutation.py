@@ -44,15 +44,26 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_tile_edits.py",
             "tests/core/test_placement.py",
             "tests/core/test_edits_behaviour.py",
+            "tests/core/test_merge_placement.py",
+            "tests/core/test_markers.py",
+            "tests/core/test_step_names.py",
+            "tests/core/test_tile_params.py",
+            "tests/core/test_vibration.py",
+            "tests/core/test_context_track.py",
+            "tests/core/test_tile_shape_behaviour.py",
+            "tests/core/test_edits_more_behaviour.py",
+            "tests/core/test_step_names_more.py",
         ],  # fmt: skip
     ),
     "projectfile": (
-        ["timeline/files/projectfile.py"],
+        ["timeline/files/projectfile.py", "timeline/files/project_fields.py"],
         [
             "tests/core/test_projectfile.py",
             "tests/core/test_projectfile_bytes.py",
             "tests/core/test_old_schemas.py",
             "tests/core/test_projectfile_roundtrip.py",
+            "tests/core/test_projectfile_messages.py",
+            "tests/core/test_hostile_projects.py",
         ],  # fmt: skip
     ),
 }

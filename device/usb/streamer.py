@@ -19,6 +19,7 @@ from device.sim.stability import stability_flags
 from device.usb import protocol as p
 from device.usb.errors import DeviceFault, DeviceUnderrun, UsbDeviceError
 from device.usb.link import Link
+from timeline.limits.servo import hand_loads
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
     LatenessMeter,
@@ -266,12 +267,13 @@ class Stream:
         return np.cumsum(torque * step - lost)
 
     def _flags(self, time: np.ndarray, layers: dict[str, np.ndarray]) -> tuple:
-        """The sim's stability rules applied to the coefficients sent (kinesthetic devices)."""
+        """The sim's stability rules applied to the coefficients sent (kinesthetic devices), the
+        whole loop judged with every hand the docs offer, as `check` judges it."""
         dynamics = self.link.info.dynamics()
         if "k" not in layers or dynamics is None:
             return ()
         k, b, m = layers["k"], layers["b"], layers.get("m")
-        return tuple(stability_flags(time, k, b, m, dynamics, 1.0 / self.rate))
+        return tuple(stability_flags(time, k, b, m, dynamics, 1.0 / self.rate, hand_loads()))
 
     def warnings(self) -> list[str]:
         """Sentences about values the host had to change before sending them."""

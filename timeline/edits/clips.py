@@ -29,7 +29,7 @@ from timeline.model import (
     Track,
 )
 from timeline.plugins.track_kinds import track_kind
-from timeline.rendering.clip_render import render_clip
+from timeline.rendering.clip_render import clip_samples, render_shape
 from timeline.signal.render_presets import preset
 from timeline.tiles import SampledTile, Tile
 
@@ -352,16 +352,15 @@ def merge_clips(
         raise EditError(f"track {target.name!r} has zero gain, so a merge onto it cannot be heard")
     rate = project.rate
     t0 = min(c.start for _, c in found)
-    n = max(1, int(math.ceil((max(c.end for _, c in found) - t0) * rate - 1e-9)))
-    total = np.zeros(n)
+    # the mixer's placement on the grid t0 + i/rate: exact at any time and rate (every start is
+    # at or after t0, so no clip starts before sample 0)
+    spans = [(track, clip, clip_samples(clip, t0, rate)) for track, clip in found]
+    total = np.zeros(max(1, max(i1 for _, _, (_, i1, _) in spans)))
     exact = preset("exact")
-    for track, clip in found:
-        i0 = max(0, math.ceil((clip.start - t0) * rate - 1e-9))
-        i1 = min(n, math.ceil((clip.end - t0) * rate - 1e-9))
+    for track, clip, (i0, i1, phase) in spans:
         if i1 > i0:
-            values = render_clip(
-                clip, project.tile(clip.tile_id), t0 + i0 / rate, rate, i1 - i0, exact
-            )
+            tile = project.tile(clip.tile_id)
+            values = render_shape(clip, tile, phase, rate, i1 - i0, exact, clip.gain)
             total[i0:i1] += values * (scale_of[track.id] / scale_of[target.id])
     name = unique_tile_name(project, name)  # "merged", "merged 2", ...
     tile = SampledTile(total, rate, name, source="merge of " + ", ".join(ids))
