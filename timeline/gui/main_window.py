@@ -103,6 +103,7 @@ class MainWindow(QMainWindow):
         self.transport.hand_changed.connect(lambda _: self.findings.hand_changed())
         self.doc.changed.connect(self._changed)
         self.doc.message.connect(self.messages.show_message)
+        self.doc.outcome.connect(lambda text: self.messages.show_message(text, hold=True))
         self.doc.modified_changed.connect(lambda _: self._update_title())
         self.doc.selection_changed.connect(self._update_actions)
         self.player.position.connect(self._follow_playhead)
@@ -662,7 +663,10 @@ class MainWindow(QMainWindow):
             lambda error, j=job: (self._job_ended(j), self.messages.show_message(error, "error"))
         )
         job.cancelled.connect(
-            lambda j=job: (self._job_ended(j), self.messages.show_message(f"{j.what} cancelled"))
+            lambda j=job: (
+                self._job_ended(j),
+                self.messages.show_message(f"{j.what} cancelled", hold=True),
+            )
         )
         self.messages.show_message(text)
         self.messages.set_progress(0.0)
