@@ -47,7 +47,6 @@ from .player import Player
 from .recent import recent_files, remember
 from .ripple import remove_rippled
 from .ruler import Ruler
-from .similarity_map import similarity_window
 from .sound_import import SoundImport
 from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
@@ -273,8 +272,8 @@ class MainWindow(QMainWindow):
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
         self._action(var, "&Delete the active variant", self.delete_variant)
-        self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
-        self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
+        self._action(var, "&Map of variants by feel…", lambda: self._similarity("variants"))
+        self._action(var, "Palette &tab by feel…", lambda: self._similarity("tab"))
         var.addSeparator()
         self.variants_menu = var
         var.aboutToShow.connect(lambda: fill_variants(var, self.doc, self.switch_variant))
@@ -282,6 +281,12 @@ class MainWindow(QMainWindow):
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
         self.help = HelpMenu(self)
+
+    def _similarity(self, what: str) -> None:
+        """Open a map by feel (its module, with the similarity measures, loads on first use)."""
+        from .similarity_map import similarity_window
+
+        similarity_window(self, what)
 
     # --- window state ----------------------------------------------------------------------
 
