@@ -90,11 +90,21 @@ class ClipLayer(QGraphicsItem):
 
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
         exposed = option.exposedRect
+        parts = _painted_parts(painter, exposed)
+        inside: dict[int, list[np.ndarray]] = {}  # lane -> clips in the parts Qt really paints
+        for part in parts if len(parts) > 1 else ():
+            for lane, _, found in self.visible(part):
+                inside.setdefault(lane, []).append(found)
         for lane, clips, found in self.visible(exposed):
             if found.size == 0:
                 continue
             painter.setOpacity(0.35 if clips.muted else 1.0)
-            if found.size >= BATCH_FROM:
+            batch = found.size >= BATCH_FROM  # the level of detail of the whole exposed rect
+            if len(parts) > 1:  # the rest would be drawn only to be clipped away
+                found = np.intersect1d(found, np.concatenate([*inside.get(lane, []), found[:0]]))
+                if found.size == 0:
+                    continue
+            if batch:
                 self._paint_boxes(painter, lane, clips, found)
                 continue
             items = [clips.items[i] for i in found.tolist()]
@@ -174,6 +184,25 @@ class ClipLayer(QGraphicsItem):
             if hits
             else None
         )
+
+
+def _painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
+    """The rectangles of `exposed` that this paint really covers, in the painter's coordinates.
+
+    Qt hands an item the bounding rectangle of what is repainted: a dragged clip's rectangles
+    and the full-height snap line make it the height of the lanes, and every clip in it would be
+    drawn only to be clipped away. The paint's region (the engine's system clip) says which
+    parts count; one part, or none known, is `exposed` itself.
+    """
+    engine = painter.paintEngine()
+    region = engine.systemClip() if engine is not None else None
+    if region is None or region.rectCount() < 2:
+        return [exposed]
+    inverse, invertible = painter.deviceTransform().inverted()
+    if not invertible:
+        return [exposed]
+    parts = [inverse.mapRect(QRectF(rect)).intersected(exposed) for rect in region]
+    return [part for part in parts if not part.isEmpty()] or [exposed]
 
 
 def _over(item: ClipItem, pos: QPointF) -> bool:

@@ -23,6 +23,7 @@ class Document(QObject):
     changed = Signal(object)  # the new Project
     selection_changed = Signal()
     message = Signal(str, str)  # text, level ("info" or "error")
+    outcome = Signal(str)  # a step of the history taken: held against routine status
     modified_changed = Signal(bool)
 
     def __init__(self, project: Project, path: Path | None = None) -> None:
@@ -82,7 +83,7 @@ class Document(QObject):
             return
         name = self.history.undo_name
         self.history.undo()
-        self.message.emit(f"undid {name}", "info")
+        self.outcome.emit(f"undid {name}")
         self._prune_selection()
         self._emit_changed()
 
@@ -92,7 +93,7 @@ class Document(QObject):
             self.message.emit("nothing to redo", "info")
             return
         self.history.redo()
-        self.message.emit(f"redid {self.history.undo_name}", "info")
+        self.outcome.emit(f"redid {self.history.undo_name}")
         self._prune_selection()
         self._emit_changed()
 
@@ -102,7 +103,7 @@ class Document(QObject):
             return
         way = "back" if index < self.history.index else "forward"
         self.history.go_to(index)
-        self.message.emit(f"{way} to step {index}: {self.history.names[index]}", "info")
+        self.outcome.emit(f"{way} to step {index}: {self.history.names[index]}")
         self._prune_selection()
         self._emit_changed()
 

@@ -393,7 +393,7 @@ class FindingsOverlay(QObject):
         self.report, self.traces, self.peaks = report, result.traces, result.peaks
         self._draw(self.doc.project, report)
         if changed:
-            self.messages.show_message(summary(report), "finding" if report.findings else "info")
+            self.messages.show_routine(summary(report), "finding" if report.findings else "info")
         if result.unrendered and result.unrendered != self._unrendered:
             self.messages.show_message(result.unrendered, "error")
         self._unrendered = result.unrendered

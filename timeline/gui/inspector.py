@@ -24,6 +24,7 @@ from timeline.edits import tile_params
 from timeline.signal.generators import GENERATORS
 from timeline.tiles import GeneratorTile, SampledTile
 
+from . import quiet
 from .document import Document
 from .geometry import display_factor
 from .inspector_clip import ClipPage
@@ -152,18 +153,15 @@ class Inspector(QWidget):
             self._rebuild(names, axis, tile)
             self._shown = shape
         if tile is None:
-            self.title.setText("Select a tile to see its parameters")
+            quiet.set_text(self.title, "Select a tile to see its parameters")
             return
         kind = tile.generator if isinstance(tile, GeneratorTile) else type(tile).__name__
         summary = GENERATORS[tile.generator].summary if isinstance(tile, GeneratorTile) else ""
-        self.title.setText(f"<b>{tile.name}</b> · {kind}")
+        quiet.set_text(self.title, f"<b>{tile.name}</b> · {kind}")
         self.title.setToolTip(summary)
         values = {"length": tile.duration, **dict(getattr(tile, "params", ()))}
         for name, box in self.boxes.items():
-            factor = self._unit(name, axis, tile)[0]
-            box.blockSignals(True)
-            box.setValue(values[name] * factor)
-            box.blockSignals(False)
+            quiet.show_value(box, values[name] * self._unit(name, axis, tile)[0])
         self.boxes["length"].setEnabled(not isinstance(tile, SampledTile))
 
     @staticmethod

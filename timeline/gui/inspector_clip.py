@@ -12,6 +12,7 @@ from timeline import edits
 from timeline.edits.vibration import with_emphasis
 from timeline.model import FADE_SHAPES, Clip, Project, Track
 
+from . import quiet
 from .document import Document
 from .geometry import axis_text
 from .inspector_fields import AXIS_DECIMALS, NumberField, axis_suffix, axis_value, pair, shown_axis
@@ -76,12 +77,11 @@ class ClipPage(QWidget):
         more = len(self.doc.selected_clips) - 1
         extra = f" (+{more})" if more else ""
         # one short line: a wrapping label would squeeze the fields in the scroll area
-        self.title.setText(f"<b>clip</b> · {name}{extra}")
+        quiet.set_text(self.title, f"<b>clip</b> · {name}{extra}")
         self.title.setToolTip(f"a clip of {name} on {track.name}")
         for box in (self.start, self.length, self.fade_in, self.fade_out):
-            box.setDecimals(AXIS_DECIMALS[axis])
-            box.setSuffix(axis_suffix(axis))
-        self.start.setMinimum(0.0 if axis == "time" else -1e9)
+            quiet.set_format(box, decimals=AXIS_DECIMALS[axis], suffix=axis_suffix(axis))
+        quiet.set_format(self.start, minimum=0.0 if axis == "time" else -1e9)
         self.start.show_value(shown_axis(clip.start, axis))
         self.length.show_value(shown_axis(clip.duration, axis))
         self.gain.show_value(clip.gain)
@@ -91,7 +91,7 @@ class ClipPage(QWidget):
         self.shape_in.setCurrentText(clip.fade_in.shape)
         self.shape_out.setCurrentText(clip.fade_out.shape)
         self.stretch.show_value(clip.stretch)
-        self.stretch.setSuffix(" (loops)" if clip.stretch_mode == "repeat" else "")
+        quiet.set_format(self.stretch, suffix=" (loops)" if clip.stretch_mode == "repeat" else "")
         self.mirror.show_value(clip.pivot)
         self.mirror.setToolTip(
             "the horizontal line amplitude drags and inversion turn about, in the clip's values "

@@ -9,6 +9,8 @@ from collections.abc import Callable
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QDoubleSpinBox, QHBoxLayout, QWidget
 
+from . import quiet
+
 AXIS_DECIMALS = {"time": 4, "position": 3}  # 0.1 ms, or a thousandth of a degree
 MIN_WIDTH = 64
 
@@ -55,9 +57,7 @@ class NumberField(QDoubleSpinBox):
 
     def show_value(self, value: float) -> None:
         """Show a value (rounded to the box's decimals) without committing it."""
-        self.blockSignals(True)
-        self.setValue(value)
-        self.blockSignals(False)
+        quiet.show_value(self, value)
         self._shown = self.value()
 
     def _finished(self) -> None:

@@ -9,6 +9,7 @@ from timeline.edits import markers
 from timeline.model import Project
 from timeline.model.markers import Marker
 
+from . import quiet
 from .document import Document
 from .geometry import axis_text
 from .inspector_fields import AXIS_DECIMALS, NumberField, axis_suffix, axis_value, shown_axis
@@ -42,10 +43,10 @@ class MarkerPage(QWidget):
             return
         axis = self.doc.project.axis
         if not self.name.hasFocus():
-            self.name.setText(marker.name)
-        self.position.setDecimals(AXIS_DECIMALS[axis])
-        self.position.setSuffix(axis_suffix(axis))
-        self.position.setMinimum(0.0)
+            quiet.set_text(self.name, marker.name)
+        quiet.set_format(
+            self.position, decimals=AXIS_DECIMALS[axis], suffix=axis_suffix(axis), minimum=0.0
+        )
         self.position.show_value(shown_axis(marker.at, axis))
 
     def _rename(self) -> None:

@@ -9,6 +9,7 @@ from timeline import edits
 from timeline.model import Track
 from timeline.plugins.track_kinds import track_kind
 
+from . import quiet
 from .document import Document
 from .inspector_fields import NumberField
 
@@ -42,11 +43,11 @@ class TrackPage(QWidget):
             return
         kind = track_kind(track.kind)
         full = kind.full_scale if track.full_scale is None else track.full_scale
-        self.title.setText(f"<b>track</b> · {kind.label}")
+        quiet.set_text(self.title, f"<b>track</b> · {kind.label}")
         if not self.name.hasFocus():
-            self.name.setText(track.name)
+            quiet.set_text(self.name, track.name)
         self.gain.show_value(track.gain)
-        self.full_scale.setSuffix(f" {kind.display_unit}")
+        quiet.set_format(self.full_scale, suffix=f" {kind.display_unit}")
         self.full_scale.setToolTip(
             f"what a tile value of 1 means on this track, in {kind.display_unit} (the kind's is "
             f"{kind.full_scale * kind.display_scale:g}); type and press Enter"

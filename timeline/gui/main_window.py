@@ -48,7 +48,6 @@ from .recent import recent_files, remember
 from .ripple import remove_rippled
 from .ruler import Ruler
 from .scrub import Scrubber
-from .similarity_map import similarity_window
 from .sound_import import SoundImport
 from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
@@ -104,6 +103,7 @@ class MainWindow(QMainWindow):
         self.transport.hand_changed.connect(lambda _: self.findings.hand_changed())
         self.doc.changed.connect(self._changed)
         self.doc.message.connect(self.messages.show_message)
+        self.doc.outcome.connect(lambda text: self.messages.show_message(text, hold=True))
         self.doc.modified_changed.connect(lambda _: self._update_title())
         self.doc.selection_changed.connect(self._update_actions)
         self.player.position.connect(self._follow_playhead)
@@ -274,8 +274,8 @@ class MainWindow(QMainWindow):
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
         self._action(var, "&Delete the active variant", self.delete_variant)
-        self._action(var, "&Map of variants by feel…", lambda: similarity_window(self, "variants"))
-        self._action(var, "Palette &tab by feel…", lambda: similarity_window(self, "tab"))
+        self._action(var, "&Map of variants by feel…", lambda: self._similarity("variants"))
+        self._action(var, "Palette &tab by feel…", lambda: self._similarity("tab"))
         var.addSeparator()
         self.variants_menu = var
         var.aboutToShow.connect(lambda: fill_variants(var, self.doc, self.switch_variant))
@@ -283,6 +283,12 @@ class MainWindow(QMainWindow):
         tracks = bar.addMenu("T&racks")
         self._action(tracks, "&Add track…", self.headers._show_kinds)
         self.help = HelpMenu(self)
+
+    def _similarity(self, what: str) -> None:
+        """Open a map by feel (its module, with the similarity measures, loads on first use)."""
+        from .similarity_map import similarity_window
+
+        similarity_window(self, what)
 
     # --- window state ----------------------------------------------------------------------
 
@@ -667,7 +673,10 @@ class MainWindow(QMainWindow):
             lambda error, j=job: (self._job_ended(j), self.messages.show_message(error, "error"))
         )
         job.cancelled.connect(
-            lambda j=job: (self._job_ended(j), self.messages.show_message(f"{j.what} cancelled"))
+            lambda j=job: (
+                self._job_ended(j),
+                self.messages.show_message(f"{j.what} cancelled", hold=True),
+            )
         )
         self.messages.show_message(text)
         self.messages.set_progress(0.0)

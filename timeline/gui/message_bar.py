@@ -2,6 +2,11 @@
 
 A message longer than the bar is shown up to an ellipsis with the whole sentence in the tooltip
 (one line always, so the lanes never jump while a message shows); `text` is always the whole.
+
+An error or an outcome (a job cancelled, a step of the history taken) is held for HOLD_SECONDS
+against routine status (the limits check's summary): a check that ends just after an import
+failed would otherwise replace the failure before anyone read it. Routine status arriving while
+a message is held waits for the hold to end, and is dropped if another message comes first.
 """
 
 from __future__ import annotations
@@ -12,6 +17,7 @@ from PySide6.QtWidgets import QHBoxLayout, QLabel, QProgressBar, QPushButton, QW
 
 COLOURS = {"info": "#1f1f1f", "error": "#b00020", "hint": "#6b6b6b"}
 INFO_SECONDS = 6
+HOLD_SECONDS = 4
 HINT = "Drag a tile from the palette onto a track · Space plays · Ctrl+Z undoes"
 
 
@@ -78,6 +84,10 @@ class MessageBar(QWidget):
         self._clear = QTimer(self)
         self._clear.setSingleShot(True)
         self._clear.timeout.connect(self.show_hint)
+        self._hold = QTimer(self)
+        self._hold.setSingleShot(True)
+        self._hold.timeout.connect(self._show_pending)
+        self._pending: tuple[str, str] | None = None
         self._callback = None
         self.action.clicked.connect(self._run_action)
         self.show_hint()
@@ -87,8 +97,15 @@ class MessageBar(QWidget):
         """The whole message (the bar may show it elided)."""
         return self.label.whole
 
-    def show_message(self, text: str, level: str = "info") -> None:
-        """Show a sentence; info fades after a few seconds, errors stay until the next message."""
+    def show_message(self, text: str, level: str = "info", hold: bool = False) -> None:
+        """Show a sentence; info fades after a few seconds, errors stay until the next message.
+        An error, or a message shown with `hold`, is not replaced by routine status for
+        HOLD_SECONDS."""
+        self._pending = None
+        if hold or level == "error":
+            self._hold.start(HOLD_SECONDS * 1000)
+        else:
+            self._hold.stop()
         self.history.append((text, level))
         self.label.set_whole(text)
         self.label.setStyleSheet(f"color: {COLOURS.get(level, COLOURS['info'])};")
@@ -96,6 +113,19 @@ class MessageBar(QWidget):
             self._clear.start(INFO_SECONDS * 1000)
         else:
             self._clear.stop()
+
+    def show_routine(self, text: str, level: str = "info") -> None:
+        """Show routine status (a check's summary), or keep it until a held message's time is
+        up."""
+        if self._hold.isActive():
+            self._pending = (text, level)
+        else:
+            self.show_message(text, level)
+
+    def _show_pending(self) -> None:
+        pending, self._pending = self._pending, None
+        if pending is not None:
+            self.show_message(*pending)
 
     def show_hint(self) -> None:
         """Between messages, say in grey what to do next (not recorded in the history)."""

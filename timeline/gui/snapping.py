@@ -27,12 +27,15 @@ class EdgeIndex:
 
     The tracks without a dragged clip keep their edges in one sorted array for as long as they
     are the same objects (edits share unchanged tracks, so for a whole drag); only the tracks
-    holding a dragged clip are gathered again, without it.
+    holding a dragged clip are gathered again, without it, and their edges sorted again only when
+    one of those other clips changed.
     """
 
     def __init__(self) -> None:
         self._others: tuple[Track, ...] | None = None
         self._edges = np.zeros(0)
+        self._mine: tuple[Clip, ...] = ()  # the other clips of the dragged clips' tracks
+        self._own = np.zeros(0)
 
     def nearest(self, project: Project, value: float, exclude: Iterable[str] = ()) -> float:
         """The clip edge (or the origin) nearest to value, ignoring the excluded clips."""
@@ -42,7 +45,10 @@ class EdgeIndex:
         if self._others is None or not _same_objects(others, self._others):
             self._others = others
             self._edges = _sorted_edges(c for t in others for c in t.clips)
-        own = _sorted_edges(c for t in holding for c in t.clips if c.id not in skip)
+        mine = tuple(c for t in holding for c in t.clips if c.id not in skip)
+        if not _same_objects(mine, self._mine):  # a drag replaces only the dragged clips
+            self._mine, self._own = mine, _sorted_edges(mine)
+        own = self._own
         best = 0.0
         for edges in (self._edges, own):
             i = int(np.searchsorted(edges, value))

@@ -23,6 +23,7 @@ from timeline import edits
 from timeline.model import Track
 from timeline.plugins.track_kinds import kinds_for_axis, track_kind
 
+from . import quiet
 from .document import Document
 from .geometry import LANE_HEIGHT
 
@@ -105,16 +106,13 @@ class TrackHeader(QFrame):
 
     def show_track(self, track: Track) -> None:
         """Show a track's current settings without emitting edits."""
-        for widget, setter, value in (
-            (self.name, "setText", track.name),
-            (self.gain, "setValue", track.gain),
-            (self.mute, "setChecked", track.mute),
-            (self.solo, "setChecked", track.solo),
-        ):
-            widget.blockSignals(True)
-            if not (widget is self.name and widget.hasFocus()):
-                getattr(widget, setter)(value)
-            widget.blockSignals(False)
+        if not self.name.hasFocus():
+            self.name.blockSignals(True)
+            quiet.set_text(self.name, track.name)
+            self.name.blockSignals(False)
+        quiet.show_value(self.gain, track.gain)
+        quiet.set_checked(self.mute, track.mute)
+        quiet.set_checked(self.solo, track.solo)
 
     def mousePressEvent(self, event: QMouseEvent) -> None:
         if event.button() == Qt.MouseButton.LeftButton:

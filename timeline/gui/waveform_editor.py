@@ -26,6 +26,7 @@ from timeline.signal.vibration_design import carrier_hz
 from timeline.tiles import Tile
 from timeline.tiles.vibration_tile import VibrationTile
 
+from . import quiet
 from .clip_shape import tile_samples
 from .document import Document
 from .geometry import axis_text, display_factor
@@ -445,21 +446,23 @@ class WaveformEditor(QWidget):
         self.copy_button.setEnabled(tile is not None)
         self.to_palette.setEnabled(tile is not None and self.range[1] > self.range[0])
         axis = self.doc.project.axis
-        self.t_box.setPrefix("t " if axis == "time" else "θ ")
-        self.t_box.setSuffix(" s" if axis == "time" else "°")
+        quiet.set_format(
+            self.t_box,
+            prefix="t " if axis == "time" else "θ ",
+            suffix=" s" if axis == "time" else "°",
+        )
         design = isinstance(tile, VibrationTile)
         self.lane_box.setVisible(design)
         frequency = design and self.lane == tile_shape.FREQUENCY
         self.hz_label.setVisible(frequency)
-        self.hz_label.setText("")
-        self.v_box.setPrefix("f " if frequency else "value ")
+        quiet.set_format(self.v_box, prefix="f " if frequency else "value ")
+        hz = ""
         if editable and self.point is not None:
             t, v = points[self.point]
-            self.hz_label.setText(f"= {hz_text(v)}")
-            for box, value in ((self.t_box, t * display_factor(axis)), (self.v_box, v)):
-                box.blockSignals(True)
-                box.setValue(value)
-                box.blockSignals(False)
+            hz = f"= {hz_text(v)}"
+            quiet.show_value(self.t_box, t * display_factor(axis))
+            quiet.show_value(self.v_box, v)
+        quiet.set_text(self.hz_label, hz)
         shown = self._shown_key()
         if shown != self.canvas.shown:  # a clip dragged elsewhere changes nothing here
             self.canvas.shown = shown

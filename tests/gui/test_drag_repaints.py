@@ -1,0 +1,75 @@
+"""A clip drag repaints only what shows the clip: the lanes and the inspector's clip fields, not
+the palette, the track headers, the waveform editor, the transport or the tile's fields (paint
+events counted; the time a drag takes is measured by `haptic-timeline bench editor`)."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import pytest
+from PySide6.QtCore import QEvent, QObject, QPoint, Qt
+from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QApplication, QWidget
+
+from .helpers import clip_point
+
+LEFT, NO = Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
+
+
+class PaintCounter(QObject):
+    """Counts paint events by which of `areas` (name -> widget) the painted widget is in."""
+
+    def __init__(self, areas: dict[str, QWidget]) -> None:
+        super().__init__()
+        self.areas = areas
+        self.counts: Counter[str] = Counter()
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
+        if event.type() == QEvent.Type.Paint and isinstance(watched, QWidget):
+            for name, area in self.areas.items():
+                if watched is area or area.isAncestorOf(watched):
+                    self.counts[name] += 1
+        return False
+
+
+@pytest.fixture
+def areas(window) -> dict[str, QWidget]:
+    win = window
+    inspector = win.inspector
+    return {
+        "palette": win.tile_palette,
+        "track headers": win.headers,
+        "waveform editor": win.editor,
+        "transport": win.transport,
+        "tile fields": inspector.title,
+        **{f"tile {name}": box for name, box in inspector.boxes.items()},
+        "clip fields": inspector.pages["clip"],
+        "lanes": win.view.viewport(),
+    }
+
+
+def test_a_clip_drag_repaints_only_the_lanes_and_the_clip_fields(window, areas):
+    win = window
+    clip_id = win.ids["c1"]
+    at = clip_point(win, clip_id)
+    viewport = win.view.viewport()
+    QTest.mousePress(viewport, LEFT, NO, at)
+    QApplication.processEvents()  # the press selects the clip: its tile and fields show
+    assert win.doc.selected_clips == [clip_id] and win.inspector.boxes
+    start = win.doc.project.find_clip(clip_id)[1].start
+    counter = PaintCounter(areas)
+    app = QApplication.instance()
+    app.installEventFilter(counter)
+    try:
+        for step in range(1, 9):
+            QTest.mouseMove(viewport, at + QPoint(5 * step, 0))
+            QApplication.processEvents()
+    finally:
+        app.removeEventFilter(counter)
+        QTest.mouseRelease(viewport, LEFT, NO, at + QPoint(40, 0))
+    moved = win.doc.project.find_clip(clip_id)[1].start - start
+    assert moved == pytest.approx(40 / win.view.lane_geometry.px_per_unit)
+    counts = counter.counts
+    assert counts["lanes"] >= 8 and counts["clip fields"] >= 8  # the clip moved, its start shown
+    quiet = {name: counts[name] for name in areas if name not in ("lanes", "clip fields")}
+    assert quiet == dict.fromkeys(quiet, 0)
