@@ -10,10 +10,11 @@ costs the same as a few clips; a lane showing fewer draws each clip's waveform, 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
+from typing import cast
 
 import numpy as np
-from PySide6.QtCore import QPointF, QRectF, Qt
+from PySide6.QtCore import QPointF, QRect, QRectF, Qt
 from PySide6.QtGui import QBrush, QColor, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import QGraphicsItem
 
@@ -201,7 +202,8 @@ def _painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
     inverse, invertible = painter.deviceTransform().inverted()
     if not invertible:
         return [exposed]
-    parts = [inverse.mapRect(QRectF(rect)).intersected(exposed) for rect in region]
+    rects = cast("Iterable[QRect]", region)  # QRegion iterates its rectangles; its stubs omit it
+    parts = [inverse.mapRect(QRectF(rect)).intersected(exposed) for rect in rects]
     return [part for part in parts if not part.isEmpty()] or [exposed]
 
 
