@@ -53,6 +53,9 @@ TARGETS: dict[str, tuple[list[str], list[str]]] = {
             "tests/core/test_tile_shape_behaviour.py",
             "tests/core/test_edits_more_behaviour.py",
             "tests/core/test_step_names_more.py",
+            "tests/core/test_vibration_behaviour.py",
+            "tests/core/test_clip_trim_behaviour.py",
+            "tests/core/test_step_history_behaviour.py",
         ],  # fmt: skip
     ),
     "projectfile": (
