@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from timeline.cli.main import main
 
 PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_speed", "scale")
@@ -24,6 +26,7 @@ TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:
 EDITOR_BENCHMARKS = ("editor", "playback")
 
 
+@pytest.mark.heavy
 def test_quick_bench_prints_tables_and_writes_plots(tmp_path: Path) -> None:
     from timeline.bench import MODULES
 

@@ -53,6 +53,7 @@ def test_rates_from_1hz_to_192khz(rate):
     np.testing.assert_allclose(out, FULL * np.arange(len(out)) / rate, rtol=1e-12, atol=1e-15)
 
 
+@pytest.mark.heavy
 def test_sampled_tile_at_1hz_renders_at_192khz_band_limited():
     """A 0.05 Hz sine sampled at 1 Hz, played at 192 kHz, is the sine again between samples."""
     data = np.sin(2 * np.pi * 0.05 * np.arange(100))

@@ -26,6 +26,7 @@ def seeds(tmp_path_factory):
     return seed_files(tmp_path_factory.mktemp("atheris-seeds"))
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("ext", ["htl", "csv", "ahap", "haptic", "wav"])
 def test_libfuzzer_finds_no_crash_in_a_reader(seeds, ext, tmp_path):
     if not seeds.get(ext):

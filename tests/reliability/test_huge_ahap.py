@@ -37,6 +37,7 @@ def huge_ahap(tmp_path_factory) -> Path:
     return path
 
 
+@pytest.mark.heavy
 def test_440000_transients_are_refused_in_one_sentence_without_placing_clips(
     huge_ahap, monkeypatch
 ) -> None:
