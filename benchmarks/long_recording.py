@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -30,6 +29,8 @@ from pathlib import Path
 from typing import Any
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
+from timeline.bench.child_process import cpu_seconds, peak_rss  # noqa: E402 - after the Qt platform
 
 RATE = 44_100
 GB = 1e9
@@ -48,25 +49,6 @@ def write_recording(path: Path, seconds: float, channels: int) -> None:
             wave = 0.5 * np.sin(2 * np.pi * 80 * t) * (0.5 + 0.5 * np.sin(2 * np.pi * 0.05 * t))
             wave += 0.05 * rng.standard_normal(t.size)
             f.write(np.repeat(wave[:, None], channels, axis=1))
-
-
-def peak_rss() -> float:
-    """Peak resident memory of this process so far, in bytes: VmHWM on Linux (ru_maxrss would
-    carry a parent's peak over into a child it execs), else ru_maxrss."""
-    try:
-        with open("/proc/self/status", encoding="ascii") as status:
-            for line in status:
-                if line.startswith("VmHWM:"):
-                    return float(line.split()[1]) * 1024.0
-    except OSError:
-        pass
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024.0  # KiB on Linux
-
-
-def cpu_seconds() -> float:
-    """User + system CPU of this process, every thread included."""
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    return usage.ru_utime + usage.ru_stime
 
 
 def measured(what: str, work: Callable[[], Any]) -> tuple[Any, dict[str, float]]:

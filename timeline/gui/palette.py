@@ -34,7 +34,7 @@ from timeline.tiles import Tile
 
 from .document import Document
 from .geometry import axis_text
-from .gestures.palette_drop import dropped_tile, tile_mime
+from .gestures.palette_drop import accept_copy, dropped_tile, tile_mime
 from .thumbnails import SIZE, thumbnail
 
 RANGE_MIME = "application/x-haptic-timeline-range"
@@ -121,22 +121,15 @@ class TileList(QListWidget):
         return [self.item(i).data(Qt.ItemDataRole.UserRole) for i in range(self.count())]
 
     def dragEnterEvent(self, event) -> None:
-        if self._wanted(event.mimeData()):
-            event.setDropAction(Qt.DropAction.CopyAction)
-            event.accept()
-        else:
-            event.ignore()
+        accept_copy(event, self._wanted(event.mimeData()))
 
     def dragMoveEvent(self, event) -> None:
         self.dragEnterEvent(event)
 
     def dropEvent(self, event) -> None:
         mime = event.mimeData()
-        if not self._wanted(mime):
-            event.ignore()
+        if not accept_copy(event, self._wanted(mime)):
             return
-        event.setDropAction(Qt.DropAction.CopyAction)
-        event.accept()
         if mime.hasFormat(RANGE_MIME):
             self.range_dropped.emit(mime)
         else:

@@ -30,7 +30,7 @@ from . import quiet
 from .clip_shape import tile_samples
 from .document import Document
 from .geometry import axis_text, display_factor
-from .gestures.palette_drop import dropped_tile
+from .gestures.palette_drop import accept_copy, dropped_tile
 from .lane_scale import full_scale_text
 from .palette import RANGE_MIME
 from .tile_editing import edit_tile
@@ -373,11 +373,7 @@ class WaveformEditor(QWidget):
         return tile_id if tile_id in self.doc.project.tiles else None
 
     def dragEnterEvent(self, event) -> None:
-        if self._dropped(event) is not None:
-            event.setDropAction(Qt.DropAction.CopyAction)
-            event.accept()
-        else:
-            event.ignore()
+        accept_copy(event, self._dropped(event) is not None)
 
     def dragMoveEvent(self, event) -> None:
         self.dragEnterEvent(event)
@@ -385,11 +381,8 @@ class WaveformEditor(QWidget):
     def dropEvent(self, event) -> None:
         """A palette tile dropped here opens in the editor (the timeline is left as it is)."""
         tile_id = self._dropped(event)
-        if tile_id is None:
-            event.ignore()
+        if not accept_copy(event, tile_id is not None) or tile_id is None:
             return
-        event.setDropAction(Qt.DropAction.CopyAction)
-        event.accept()
         self.doc.select_tile(tile_id)
         self.doc.message.emit(f"editing {self.doc.project.tile(tile_id).name}", "info")
 

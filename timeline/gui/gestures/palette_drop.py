@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QMimeData, QPointF, QRectF, Qt
-from PySide6.QtGui import QBrush, QColor, QPen
+from PySide6.QtGui import QBrush, QColor, QDropEvent, QPen
 
 from timeline import edits
 
@@ -30,6 +30,16 @@ def dropped_tile(mime: QMimeData) -> str | None:
     if mime.hasFormat(TILE_MIME):
         return bytes(mime.data(TILE_MIME).data()).decode()
     return None
+
+
+def accept_copy(event: QDropEvent, wanted: bool) -> bool:
+    """Accept a drag or drop as a copy when it carries what the target wants, else ignore it."""
+    if wanted:
+        event.setDropAction(Qt.DropAction.CopyAction)
+        event.accept()
+    else:
+        event.ignore()
+    return wanted
 
 
 class PaletteDrop:
