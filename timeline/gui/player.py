@@ -15,6 +15,7 @@ ahead on a background thread, so the first block goes out within a few ms of Pla
 
 from __future__ import annotations
 
+import importlib
 import sys
 import threading
 import time
@@ -137,6 +138,9 @@ class Player(QObject):
         try:
             device = self._open()
             device.warm_up()
+            # The findings check's libraries (scipy.signal), imported here rather than beside
+            # the first play, where the import would hold the interpreter lock for ~0.1 s.
+            importlib.import_module("timeline.limits.check")
             if project.axis == "time" and project.duration > start:
                 stop = min(project.duration, start + CHUNK_SECONDS)
                 stream = LiveStream(project, device.info.rate, start, stop, mixer=self._mixer)
