@@ -9,6 +9,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import overload
 
+import numpy as np
+
 from timeline import edits
 from timeline.model import Project
 
@@ -62,23 +64,24 @@ def overlaps(project: Project, track_id: str) -> dict[str, tuple[tuple[float, fl
     The span runs from where the first other clip reaches into it to where the last one leaves
     it (gaps between several covering clips are not split out: it is what the lane hatches).
     """
-    clips = sorted(project.track(track_id).clips, key=lambda c: (c.start, c.end))
-    n = len(clips)
-    later_reach = [float("-inf")] * (n + 1)  # max end of the clips after each one
-    for i in range(n - 1, -1, -1):
-        later_reach[i] = max(later_reach[i + 1], clips[i].end)
+    track_clips = project.track(track_id).clips
+    if len(track_clips) < 2:
+        return {}
+    starts = np.array([c.start for c in track_clips], dtype=np.float64)
+    ends = np.array([c.end for c in track_clips], dtype=np.float64)
+    order = np.lexsort((ends, starts))  # by start, then end; stable as sorted() is
+    starts, ends = starts[order], ends[order]
+    reach = np.r_[-np.inf, np.maximum.accumulate(ends)[:-1]]  # max end of the clips before
+    later = np.r_[np.maximum.accumulate(ends[::-1])[::-1][1:], -np.inf]  # of the clips after
+    following = np.r_[starts[1:], np.inf]  # the next clip's start
+    lo = np.where(reach > starts + EPS, starts, np.inf)  # earlier clips cover its start
+    hi = np.where(reach > starts + EPS, np.minimum(ends, reach), -np.inf)
+    inside = following < ends - EPS  # later clips start inside it
+    lo = np.where(inside, np.minimum(lo, following), lo)
+    hi = np.where(inside, np.maximum(hi, np.minimum(ends, later)), hi)
     found: dict[str, tuple[tuple[float, float], ...]] = {}
-    reach = float("-inf")  # max end of the clips before
-    for i, c in enumerate(clips):
-        lo, hi = float("inf"), float("-inf")
-        if reach > c.start + EPS:  # earlier clips cover its start
-            lo, hi = c.start, min(c.end, reach)
-        if i + 1 < n and clips[i + 1].start < c.end - EPS:  # later clips start inside it
-            lo = min(lo, clips[i + 1].start)
-            hi = max(hi, min(c.end, later_reach[i + 1]))
-        if hi - lo > EPS:
-            found[c.id] = ((lo, hi),)
-        reach = max(reach, c.end)
+    for i in np.flatnonzero(hi - lo > EPS).tolist():
+        found[track_clips[order[i]].id] = ((float(lo[i]), float(hi[i])),)
     return found
 
 

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+from functools import cache
 
 import numpy as np
 from PySide6.QtCore import QLineF, QPointF, QRectF, Qt
@@ -37,6 +39,16 @@ def value_offset(value: float, height: float) -> float:
     return height / 2 - max(-1.2, min(1.2, value / VALUE_RANGE)) * half
 
 
+@cache
+def _fade_curve(shape: str) -> tuple[list[float], list[float]]:
+    """24 points of a fade-in's gain over [0, 1], as Python floats (for QPointFs)."""
+    xs = np.linspace(0.0, 1.0, 24)
+    return xs.tolist(), fade_in_gain(xs, shape).tolist()
+
+
+WHOLE_WAVE_PX = 4096  # a clip up to this wide keeps its whole wave's columns between paints
+
+
 class ClipItem:
     """One clip as the timeline shows it: where it is, what a press on it grabs, how it paints.
 
@@ -60,6 +72,7 @@ class ClipItem:
         self._key: tuple[object, ...] = ()
         self.muted = False
         self.covered: tuple[tuple[float, float], ...] = ()
+        self._wave: tuple[tuple[object, ...], Tile, list[QLineF]] | None = None  # _wave_lines
 
     def update_from(
         self,
@@ -210,10 +223,29 @@ class ClipItem:
             painter.drawRect(QRectF(1, 1, w - 2, h - 2))
 
     def _paint_wave(self, painter: QPainter, exposed: QRectF) -> None:
-        clip = self.clip
         if exposed.width() <= 0:
             return
         x0, x1 = math.floor(exposed.left()), math.ceil(exposed.right())
+        whole = math.ceil(self._w)
+        if whole <= WHOLE_WAVE_PX:  # the whole clip's columns, kept, and the exposed ones drawn
+            lines = self._wave_lines(0, whole)[max(0, x0) : max(0, x1)]
+        else:
+            lines = self._wave_lines(x0, x1)
+        painter.setPen(hairline(self.colour.darker(150)))
+        painter.drawLines(lines)
+        painter.setPen(hairline(QColor(0, 0, 0, 60)))
+        painter.drawLine(
+            QPointF(exposed.left(), self.value_y(0)), QPointF(exposed.right(), self.value_y(0))
+        )
+
+    def _wave_lines(self, x0: int, x1: int) -> list[QLineF]:
+        """The wave's pixel columns x0..x1 (item coordinates) as vertical lines. The last ones
+        drawn are kept: they depend on where the clip sits only through its start, so a clip
+        dragged along its lane, and its neighbours repainted around it, reuse them."""
+        clip = self.clip
+        key = (replace(clip, start=0.0), self.rate, self._h, self.lane_geometry.px_per_unit, x0, x1)
+        if self._wave is not None and self._wave[1] is self.tile and self._wave[0] == key:
+            return self._wave[2]
         count = max(1, x1 - x0)
         t0 = clip.start + self.lane_geometry.u(x0)
         t1 = clip.start + self.lane_geometry.u(x1)
@@ -225,15 +257,10 @@ class ClipItem:
         bottom = self._value_ys(np.minimum(lo, np.r_[hi[:1], hi[:-1]]))
         top, bottom = top - 0.5, np.maximum(bottom, top) + 0.5  # at least a pixel: no gaps
         xs = x0 + np.arange(count) + 0.5
-        painter.setPen(hairline(self.colour.darker(150)))
-        painter.drawLines(
-            [QLineF(x, a, x, b) for x, a, b in zip(xs.tolist(), top.tolist(), bottom.tolist(),
-                                                   strict=True)]
-        )  # fmt: skip
-        painter.setPen(hairline(QColor(0, 0, 0, 60)))
-        painter.drawLine(
-            QPointF(exposed.left(), self.value_y(0)), QPointF(exposed.right(), self.value_y(0))
-        )
+        lines = [QLineF(x, a, x, b) for x, a, b in zip(xs.tolist(), top.tolist(), bottom.tolist(),
+                                                       strict=True)]  # fmt: skip
+        self._wave = (key, self.tile, lines)
+        return lines
 
     def _paint_marker(self, painter: QPainter) -> None:
         """A flag over a narrow clip, as wide as its grab area, so it can be seen and grabbed."""
@@ -250,12 +277,10 @@ class ClipItem:
         for which, fade in (("in", clip.fade_in), ("out", clip.fade_out)):
             length = self.lane_geometry.x(fade.length)
             if length >= 1:
-                xs = np.linspace(0.0, 1.0, 24)
-                gain = fade_in_gain(xs, fade.shape)
+                xs, gain = _fade_curve(fade.shape)
+                w, h = self._w, self._h
                 points = [
-                    QPointF(
-                        x * length if which == "in" else self._w - x * length, self._h * (1 - g)
-                    )
+                    QPointF(x * length if which == "in" else w - x * length, h * (1 - g))
                     for x, g in zip(xs, gain, strict=True)
                 ]
                 painter.setBrush(Qt.BrushStyle.NoBrush)

@@ -85,6 +85,7 @@ class TrackHeader(QFrame):
         layout.addLayout(bottom)
         for field in (self.name, self.gain):
             field.installEventFilter(self)  # typing in a header shows its track too
+        self._shown: Track | None = None
         self.show_track(track)
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:
@@ -97,15 +98,14 @@ class TrackHeader(QFrame):
         button.setText(text)
         button.setToolTip(tip)
         button.setCheckable(True)
-        button.clicked.connect(
-            lambda on: self.doc.apply(
-                f"{field} track", edits.set_track, self.track_id, **{field: on}
-            )
-        )
+        button.clicked.connect(lambda on: self._apply(f"{field} track", **{field: on}))
         return button
 
     def show_track(self, track: Track) -> None:
         """Show a track's current settings without emitting edits."""
+        if track is self._shown and not self.name.hasFocus():
+            return  # tracks are immutable: the same object shows the same settings
+        self._shown = track
         if not self.name.hasFocus():
             self.name.blockSignals(True)
             quiet.set_text(self.name, track.name)
@@ -147,10 +147,16 @@ class TrackHeader(QFrame):
     def _rename(self) -> None:
         track = self.doc.project.track(self.track_id)
         if self.name.text() != track.name:
-            self.doc.apply("rename track", edits.set_track, self.track_id, name=self.name.text())
+            self._apply("rename track", name=self.name.text())
 
     def _set_gain(self, value: float) -> None:
-        self.doc.apply("track gain", edits.set_track, self.track_id, gain=value)
+        self._apply("track gain", gain=value)
+
+    def _apply(self, label: str, **fields: object) -> None:
+        """Edit the track from this header; whatever the edit's fate, the next refresh shows
+        the track as it then is (a refused edit leaves the widgets showing the old state)."""
+        self._shown = None
+        self.doc.apply(label, edits.set_track, self.track_id, **fields)
 
 
 class HeaderColumn(QScrollArea):
@@ -234,4 +240,4 @@ class HeaderColumn(QScrollArea):
                 self.rows.insertWidget(index, header)
         else:
             for track in tracks:
-                self.headers[track.id].show_track(track)
+                self.headers[track.id].show_track(track)  # skips a track it already shows
