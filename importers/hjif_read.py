@@ -44,6 +44,7 @@ DEFAULT_TIMESCALE = 1000  # ticks per second of files written before `timescale`
 MAX_TIMESCALE = 10**7
 MAX_KEYFRAMES = 500_000  # keyframes read from one file (a bound on time and memory)
 CURVE_RATE = 10_000.0  # Hz: curve bands are sampled at the knob's servo rate
+MAX_CURVE_SAMPLES = int(vib.MAX_DURATION * CURVE_RATE)  # samples of all curves of one file
 VIBRATION = {"Vibrotactile", "Vibration", "Other"}
 FORCE = {"Force", "Kinesthetic"}
 LINEAR_NOTE = "sharpness = frequency"  # in a perception's description: AHAP convention linear
@@ -94,6 +95,7 @@ class _Reader:
         self.keyframes = 0
         self.dropped = 0
         self.clipped_hz = 0
+        self.curve_samples = 0
 
     def fail(self, where: str, what: str) -> FormatError:
         return FormatError(f"{self.name}: {where} {what}")
@@ -186,7 +188,13 @@ def _channel(r: _Reader, channel: dict, where: str, timescale: int, library) -> 
             content.emphasis += _transients(r, effects)
         else:
             curve = r.text(band, "curve_type", here, "Linear")
-            content.curves += [_curve(e, curve) for e in effects if len(e.times) >= 1]
+            for e in effects:
+                r.curve_samples += int(round((e.end - e.start) * CURVE_RATE)) + 1
+                if r.curve_samples > MAX_CURVE_SAMPLES:
+                    raise FormatError(
+                        f"{r.name}: its curves last more than {vib.MAX_DURATION:g} s in all"
+                    )
+                content.curves.append(_curve(e, curve))
     if waves:
         content.amplitude, content.frequency = _envelopes(r, waves)
     return content
