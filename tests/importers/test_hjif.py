@@ -159,6 +159,34 @@ def test_library_references_and_a_stray_codec_keyframe(tmp_path):
     assert any("2 keyframe(s) later than" in n for n in result.notes)
 
 
+def test_overlapping_effects_in_several_bands_add(tmp_path):
+    # Explosion1 as the reference software wrote it puts overlapping effects in bands of their own
+    bands = [
+        _band("VectorialWave", [_basis(0, [(0, 0.5, 90), (200, 0.5)])], 0, 1000),
+        _band("VectorialWave", [_basis(100, [(0, 0.25, 90), (200, 0.25)])], 0, 1000),
+    ]
+    result = hjif.FORMAT.read(_write(tmp_path, _old_style(bands)))
+    design = result.placements[0].tile.design
+    expected = [(0, 0.5), (0.05, 0.5), (0.05, 0.75), (0.1, 0.75), (0.1, 0.25), (0.15, 0.25)]
+    assert np.array(design.amplitude) == pytest.approx(np.array(expected))
+    assert any("overlapping vectorial effects were added" in n for n in result.notes)
+
+
+def test_a_real_shaped_file_comes_back_the_same(tmp_path):
+    # 2000 ticks a second divide 48,000: an import exported and read again keeps every number
+    effect = _basis(0, [(0, ZERO, 142), (146, ZERO, 142), (148, 0.49803924560546875)])
+    transient = _basis(300, [(0, 0.6313725709915161, 90), (26, 0.7882353067398071, 90)])
+    doc = _old_style([_band("VectorialWave", [effect]), _band("Transient", [transient])])
+    project = importing.place(
+        edits.new_project(templates=False), hjif.FORMAT.read(_write(tmp_path, doc))
+    )[0]
+    hjif.FORMAT.write(project, tmp_path / "again.hjif")
+    again = importing.place(
+        edits.new_project(templates=False), hjif.FORMAT.read(tmp_path / "again.hjif")
+    )[0]
+    assert design_of(again) == design_of(project)
+
+
 def test_transient_band_keyframes_become_emphasis(tmp_path):
     effect = _basis(200, [(0, 0.7, 155), (100, -0.5, 230), (100, 0.25)])
     result = hjif.FORMAT.read(_write(tmp_path, _old_style([_band("Transient", [effect])])))
