@@ -1,13 +1,14 @@
 """Writing a project as an MPEG-I haptics interchange file (ISO/IEC 23090-31 .hjif).
 
-The sounding drive tracks split in two. Those holding vibration designs or emphasis clips are
-read as one design (timeline.edits.vibration.design_of, what .haptic export takes) and written as
-a Vibrotactile perception: one channel with a VectorialWave band (one effect whose keyframes are
-the amplitude breakpoints, amplitude_modulation 0..1, and the frequency breakpoints,
-frequency_modulation in integer Hz on our carrier's F_MIN..F_MAX) and a Transient band (one
-keyframe per emphasis). The other drive tracks are force layers: rendered, reduced to breakpoints
-within FORCE_TOLERANCE of full scale and written as a Force perception's Curve band (linear,
-amplitude_modulation = drive / full scale, clipped to -1..1).
+The sounding drive tracks split in two. Those holding vibration designs, emphasis clips or sine
+clips of at most TRANSIENT_MAX (read as emphasis, as .haptic export does) are read as one design
+(timeline.edits.vibration.design_of, what .haptic export takes) and written as a Vibrotactile
+perception: one channel with a VectorialWave band (one effect whose keyframes are the amplitude
+breakpoints, amplitude_modulation 0..1, and the frequency breakpoints, frequency_modulation in
+integer Hz on our carrier's F_MIN..F_MAX) and a Transient band (one keyframe per emphasis). The
+other drive tracks are force layers: rendered, reduced to breakpoints within FORCE_TOLERANCE of
+full scale and written as a Force perception's Curve band (linear, amplitude_modulation = drive /
+full scale, clipped to -1..1).
 
 Times are ticks of TIMESCALE per second (48,000, the Main profile's largest). The reference
 decoder holds a vectorial effect's first and last amplitude over the whole effect, so where the
@@ -25,7 +26,13 @@ import numpy as np
 
 from importers.hjif_read import LINEAR_NOTE
 from timeline.analysis.breakpoints import simplify
-from timeline.edits.vibration import DRIVE, VibrationDesign, design_of, sharpness_convention
+from timeline.edits.vibration import (
+    DRIVE,
+    TRANSIENT_MAX,
+    VibrationDesign,
+    design_of,
+    sharpness_convention,
+)
 from timeline.errors import EditError
 from timeline.model import DEFAULT_TIME_RATE, Project, Track
 from timeline.plugins.track_kinds import track_kind
@@ -77,19 +84,23 @@ def document(project: Project, rate: float | None = None, title: str = "") -> di
 
 
 def _split(project: Project) -> tuple[list[Track], list[Track]]:
-    """The sounding drive tracks with clips: vibration designs, and force layers."""
+    """The sounding drive tracks with clips: those holding vibration data (designs, emphasis
+    clips, sine clips short enough to be read as emphasis), and force layers (the rest)."""
     vibration, force = [], []
     for track in mixer.active_tracks(project):
         if track.kind != DRIVE or not track.clips:
             continue
-        tiles = [project.tile(c.tile_id) for c in track.clips]
-        designed = any(
-            isinstance(t, VibrationTile)
-            or (isinstance(t, GeneratorTile) and t.generator == "emphasis")
-            for t in tiles
-        )
+        designed = any(_vibration_clip(project.tile(c.tile_id), c.duration) for c in track.clips)
         (vibration if designed else force).append(track)
     return vibration, force
+
+
+def _vibration_clip(tile: object, duration: float) -> bool:
+    if isinstance(tile, VibrationTile):
+        return True
+    if not isinstance(tile, GeneratorTile):
+        return False
+    return tile.generator == "emphasis" or (tile.generator == "sine" and duration <= TRANSIENT_MAX)
 
 
 def _perception(pid: int, description: str, modality: str, bands: list) -> dict[str, Any]:

@@ -22,7 +22,7 @@ from timeline.files import exporting, importing
 from timeline.plugins import discovery
 from timeline.plugins.file_formats import FormatError, Imported, readers_for, writer_for
 from timeline.rendering import mixer
-from timeline.tiles import GeneratorTile, spline
+from timeline.tiles import GeneratorTile, generator, spline
 
 from .hjif_schema import HJIF_SCHEMA
 
@@ -247,6 +247,23 @@ def test_export_is_valid_against_the_schema(tmp_path):
         "amplitude_modulation": 0.4,
         "frequency_modulation": 95,
     }
+
+
+def test_a_short_sine_clip_is_a_transient_and_a_long_one_force(tmp_path):
+    project, track = edits.add_track(edits.new_project(templates=False), "drive")
+    project, short = edits.add_tile(project, generator("sine", 0.02, amplitude=0.5, frequency=155))
+    project, _ = edits.add_clip(project, track, short, 0.3)
+    project, other = edits.add_track(project, "drive")
+    project, long = edits.add_tile(project, generator("sine", 0.5, amplitude=0.5, frequency=5))
+    project, _ = edits.add_clip(project, other, long, 0.0)
+    hjif.FORMAT.write(project, tmp_path / "s.hjif")
+    doc = json.loads((tmp_path / "s.hjif").read_text())
+    vibration, force = doc["perceptions"]
+    transient = vibration["channels"][0]["bands"][0]
+    assert transient["band_type"] == "Transient"
+    assert transient["effects"][0]["position"] == 0.3 * TIMESCALE
+    assert transient["effects"][0]["keyframes"][0]["frequency_modulation"] == 155
+    assert force["channels"][0]["bands"][0]["band_type"] == "Curve"
 
 
 def test_the_schema_refuses_what_the_reference_reader_refuses():
