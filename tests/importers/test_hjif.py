@@ -22,7 +22,7 @@ from timeline.files import exporting, importing
 from timeline.plugins import discovery
 from timeline.plugins.file_formats import FormatError, Imported, readers_for, writer_for
 from timeline.rendering import mixer
-from timeline.tiles import GeneratorTile, generator, spline
+from timeline.tiles import GeneratorTile, VibrationTile, generator, spline
 
 from .hjif_schema import HJIF_SCHEMA
 
@@ -370,6 +370,16 @@ def test_corpus_ahap_through_hjif_exports_the_same_ahap(corpus, tmp_path, regist
 
 
 # --- registration and hostile input ---------------------------------------------------------------
+
+
+def test_an_apple_style_ahap_keeps_its_sharpness_convention(tmp_path, registered):
+    project = _read(ROOT / "tests" / "data" / "apple_style.ahap")
+    exporting.export_project(project, tmp_path / "a.hjif")
+    doc = json.loads((tmp_path / "a.hjif").read_text())
+    assert "sharpness = frequency" in doc["perceptions"][0]["description"]
+    back = _read(tmp_path / "a.hjif")
+    tiles = [back.tile(c.tile_id) for t in back.tracks for c in t.clips]
+    assert [t.sharpness for t in tiles if isinstance(t, VibrationTile)] == ["linear"]
 
 
 def test_pyproject_registers_the_format():
