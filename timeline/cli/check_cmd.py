@@ -12,7 +12,7 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from timeline.cli.play_cmd import parse_option
+from timeline.cli.device_options import device_options
 from timeline.limits.actuators import PROFILES
 from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
     project = load(args.project)
     hand = Hand.parse(args.hand)
     chosen = actuator(args.actuator) if args.actuator else None
-    options = dict(parse_option(text) for text in args.device_option)
+    options = device_options(args.device_option)
     with open_device(args.device, **options) as device:
         info = device.info
     report = check(project, info, chosen, args.quality, hand)
