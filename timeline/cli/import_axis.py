@@ -70,11 +70,14 @@ class Arrangement:
     args: argparse.Namespace
     at: float = 0.0
     axis: str = "time"
+    length: float | None = None
 
     def start(self, project: Project) -> float:
-        """--at in axis units (0 when not given)."""
+        """--at in axis units (0 when not given); --length read too, both before the file."""
         self.axis = project.axis
         self.at = 0.0 if self.args.at is None else on_axis(self.args.at, self.axis, "--at")
+        if self.args.length is not None:
+            self.length = on_axis(self.args.length, self.axis, "--length")
         return self.at
 
     def placements(self, project: Project, imported: Imported) -> Imported:
@@ -83,15 +86,15 @@ class Arrangement:
         name = Path(self.args.file).name
         reach = extent(imported)
         target = reach  # one file unit per axis unit: a second becomes a radian
-        if self.args.length is not None:
-            target = on_axis(self.args.length, axis, "--length")
+        if self.length is not None:
+            target = self.length
             if not reach > 0:
                 raise HapticTimelineError(f"{name} has no length to stretch to --length")
             imported = stretched(imported, target / reach)
         if axis != "position" or not reach > 0 or not in_seconds(self.args.file):
             return imported
         became = f"its {reach:.6g} s {amount(target, axis)} of the knob's angle"
-        if self.args.length is None:
+        if self.length is None:
             note = (f"{name} is in seconds: one radian per second made {became} (1 s = "
                     f"{amount(1.0, axis)}); --length DEG gives it another span")  # fmt: skip
         else:
