@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 import soundfile
 
+from timeline import edits
 from timeline.cli.main import main
 from timeline.edits import tile_shape
 from timeline.files import projectfile
@@ -137,3 +138,15 @@ def test_export_rate_per_degree_and_range_tile_names(tmp_path):
         project, detents, math.radians(20), math.radians(200)
     )
     assert project.tile(tile).name == "four detents 20-200 deg"
+
+
+def test_check_gives_spans_in_degrees(tmp_path, capsys):
+    project = projectfile.load(FAN)
+    walls = next(t.id for t in project.tracks if t.kind == "torque")
+    hot = tmp_path / "hot.htl"
+    projectfile.save(edits.set_track(project, walls, gain=3.0), hot)  # the walls saturate
+    assert main(["check", str(hot)]) == 3
+    assert "maximum output at 0.0 to 11.7 deg (0.432 N*m" in capsys.readouterr().out
+    assert main(["check", str(hot), "--json"]) == 3
+    first = json.loads(capsys.readouterr().out)["findings"][0]
+    assert (first["start"], first["stop"], first["span_unit"]) == (0.0, 11.67, "deg")

@@ -18,6 +18,7 @@ from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
 if TYPE_CHECKING:  # the limits, devices and mixer load when a design is checked, not for --help
     from timeline.limits.check import Report
+    from timeline.limits.findings import Finding
     from timeline.plugins.device_protocol import DeviceInfo, Hand
 
 FOUND = 3
@@ -57,6 +58,18 @@ def device_limits(info: DeviceInfo) -> dict[str, float]:
     return limits
 
 
+def finding_json(finding: Finding) -> dict[str, object]:
+    """A finding as JSON, its span in the units a person reads (`span_unit`: s, or deg)."""
+    from timeline.edits.naming import display_unit, displayed
+
+    out = finding.as_dict()
+    for key in ("start", "stop"):
+        if isinstance(out[key], float):
+            out[key] = displayed(out[key], finding.axis)  # type: ignore[arg-type]
+    out["span_unit"] = display_unit(finding.axis)
+    return out
+
+
 def as_json(path: str, info: DeviceInfo, report: Report, hand: Hand) -> str:
     device = asdict(info)
     return json.dumps(
@@ -65,7 +78,7 @@ def as_json(path: str, info: DeviceInfo, report: Report, hand: Hand) -> str:
             "device": device,
             "hand": str(hand),
             "limits": device_limits(info),
-            "findings": [f.as_dict() for f in report.findings],
+            "findings": [finding_json(f) for f in report.findings],
             "notes": list(report.notes),
         },
         indent=2,
