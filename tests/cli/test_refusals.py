@@ -164,3 +164,17 @@ def test_refusals_leave_the_project_untouched(tmp_path, capsys):
     refused(["import", str(source), "--into", str(project), "--at", "2s"], capsys)
     refused(["import", str(source), "--into", str(project), "--length", "1s"], capsys)
     assert project.read_bytes() == before
+
+
+def test_running_out_of_memory_on_import_names_the_file_not_a_range(tmp_path, monkeypatch, capsys):
+    from timeline.files import importing
+
+    def too_big(*args, **kwargs):
+        raise MemoryError
+
+    monkeypatch.setattr(importing, "read_file", too_big)
+    source = tmp_path / "big.csv"
+    source.write_text("time,value\n0,0\n0.001,0.5\n")
+    err = refused(["import", str(source), "--into", str(tmp_path / "p.htl")], capsys)
+    assert f"ran out of memory reading {source}: it needs more memory than is free" in err
+    assert "range" not in err and not (tmp_path / "p.htl").exists()
