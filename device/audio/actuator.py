@@ -45,6 +45,11 @@ def load_sounddevice() -> Any:
         ) from None
 
 
+def _number(value: Any) -> bool:
+    """True for a finite int or float (not a bool, not text)."""
+    return isinstance(value, int | float) and not isinstance(value, bool) and np.isfinite(value)
+
+
 class AudioActuator(Device):
     """A vibrotactile actuator on a sound card output (sounddevice / PortAudio).
 
@@ -61,11 +66,27 @@ class AudioActuator(Device):
         gain: float = 1.0,
         latency: str | float = "high",
     ) -> None:
-        if not (np.isfinite(gain) and 0 < gain <= 1):
-            raise DeviceError(f"the audio gain must be in (0, 1], not {gain}")
+        if not (_number(gain) and 0 < gain <= 1):
+            raise DeviceError(f"the audio gain must be in (0, 1], not {gain!r}")
+        for name, value in (("rate", rate), ("samplerate", samplerate)):
+            if value is not None and not (_number(value) and value > 0):
+                raise DeviceError(f"the audio {name} is a positive number of Hz, not {value!r}")
+        if not (isinstance(latency, str) or (_number(latency) and latency >= 0)):
+            raise DeviceError(
+                f"the audio latency is low, high or a number of seconds, not {latency!r}"
+            )
         self.device, self.samplerate, self.rate = device, samplerate, float(rate)
         self.gain, self.latency = float(gain), latency
         self._card: dict[str, Any] | None = None
+
+    @classmethod
+    def missing(cls) -> str | None:
+        """What to install when sounddevice or PortAudio is missing."""
+        try:
+            load_sounddevice()
+        except DeviceError as exc:
+            return str(exc)
+        return None
 
     @classmethod
     def discover(cls) -> list[str]:

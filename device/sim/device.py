@@ -11,6 +11,7 @@ from device.sim.physics import KnobPhysics
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
     Device,
+    DeviceError,
     DeviceInfo,
     Hand,
     LatenessMeter,
@@ -29,7 +30,17 @@ class SimKnob(Device):
 
     def __init__(self, integrator: str = "zoh", substeps: int = 1, **params: Any) -> None:
         self.params = KnobParams(**params)
+        if self.params.max_torque == 0:
+            raise DeviceError(
+                "the simulated knob's max torque is its motor's own limit and must be above 0 "
+                "N*m; to feel no torque, mute the tracks"
+            )
         self.physics = KnobPhysics(self.params, integrator, substeps)
+
+    @classmethod
+    def options(cls) -> tuple[str, ...]:
+        """The integrator, its substeps and every knob parameter (device.sim.params)."""
+        return ("integrator", "substeps", *KnobParams.option_names())
 
     @property
     def info(self) -> DeviceInfo:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from numbers import Real
 
 import numpy as np
 
@@ -46,6 +47,10 @@ class KnobParams:
             value = getattr(self, name)
             if name in ("firmware", "estimator", "gains"):
                 continue
+            if not isinstance(value, Real):
+                raise DeviceError(
+                    f"the knob's {name.replace('_', ' ')} ({name}) is a number, not {value!r}"
+                )
             if not math.isfinite(value) or value < 0:
                 raise DeviceError(f"the knob's {name.replace('_', ' ')} must be >= 0, not {value}")
         if self.estimator not in ESTIMATORS:
@@ -61,8 +66,13 @@ class KnobParams:
             object.__setattr__(self, "gains", _gains(self.gains, self.estimator))
         if self.delay not in (0, 1):
             raise DeviceError(f"the knob's delay is 0 or 1 servo period, not {self.delay}")
-        if self.rate <= 0 or self.max_torque <= 0 or self.inertia <= 0:
-            raise DeviceError("the knob's rate, max torque and inertia must be positive")
+        if self.rate <= 0 or self.inertia <= 0:  # a max torque of 0 plays no torque
+            raise DeviceError("the knob's rate and inertia must be positive")
+
+    @classmethod
+    def option_names(cls) -> tuple[str, ...]:
+        """The parameters a device option may set (every field)."""
+        return tuple(cls.__dataclass_fields__)
 
     @cached_property
     def dynamics(self) -> Dynamics:

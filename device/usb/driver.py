@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import replace
@@ -74,6 +75,11 @@ class UsbKnob(Device):
         realtime: bool | None = None,
         process: bool | None = None,
     ) -> None:
+        _check_options(vid, pid, serial, lead, block, timeout_ms, watchdog_ms, max_torque)
+        serial = None if serial is None else str(serial)  # digits arrive as a number
+        for flag, value in (("emulate", emulate), ("realtime", realtime), ("process", process)):
+            if value is not None and not isinstance(value, bool):
+                raise DeviceError(f"the USB option {flag} is true or false, not {value!r}")
         emulated = backend is None and (_emulating() if emulate is None else emulate)
         if emulated:
             realtime = os.environ.get(EMULATE_ENV, "") == REALTIME if realtime is None else realtime
@@ -100,6 +106,21 @@ class UsbKnob(Device):
         self.remote: StreamProcess | None = None
         self.underruns = 0  # samples played from an empty queue in the last play (its last report)
         self._info: DeviceInfo | None = None
+
+    @classmethod
+    def options(cls) -> tuple[str, ...]:
+        """What `--device-option` may set: every constructor argument but the backend object."""
+        return tuple(name for name in super().options() or () if name != "backend")
+
+    @classmethod
+    def missing(cls) -> str | None:
+        """Without libusb nothing can be found (the emulated device needs none)."""
+        if _emulating() or default_backend() is not None:
+            return None
+        return (
+            "no USB library was found: install libusb (apt-get install libusb-1.0-0) or "
+            "pip install libusb-package"
+        )
 
     @classmethod
     def discover(
@@ -184,7 +205,7 @@ class UsbKnob(Device):
         rest = iter(blocks)
         first = next(rest, None)
         mask = self._mask(info, first)
-        limit = min(self.max_torque or np.inf, info.max_torque)
+        limit = min(np.inf if self.max_torque is None else self.max_torque, info.max_torque)
         program_blocks = chain([] if first is None else [first], rest)
         if self.remote is not None:
             settings = (mask, limit, self.lead, self.block, self.watchdog_ms, hand)
@@ -241,6 +262,51 @@ class UsbKnob(Device):
                 raise DeviceError("this USB device cannot render a mass layer")
             return p.ALL_CHANNELS
         return p.CH_D | p.CH_K | p.CH_B
+
+
+def _number(value: Any) -> bool:
+    """True for a finite int or float (not a bool, not text)."""
+    return isinstance(value, int | float) and not isinstance(value, bool) and np.isfinite(value)
+
+
+def _whole(value: Any, lo: int, hi: float) -> bool:
+    """True for an int (not a bool) from lo to hi."""
+    return isinstance(value, int) and not isinstance(value, bool) and lo <= value <= hi
+
+
+def _check_options(
+    vid: Any,
+    pid: Any,
+    serial: Any,
+    lead: Any,
+    block: Any,
+    timeout_ms: Any,
+    watchdog_ms: Any,
+    max_torque: Any,
+) -> None:
+    """One sentence for an option value the device could not use (before anything opens)."""
+    for name, value in (("vid", vid), ("pid", pid)):
+        if not _whole(value, 0, 0xFFFF):
+            shown = f"{value:#x}" if _whole(value, 0, math.inf) else repr(value)
+            raise DeviceError(
+                f"the USB {name} is a whole number from 0 to 0xffff (16 bits), not {shown}"
+            )
+    if serial is not None and not isinstance(serial, str | int):
+        raise DeviceError(f"the USB serial is the device's serial number as text, not {serial!r}")
+    if max_torque is not None and not (_number(max_torque) and max_torque >= 0):
+        raise DeviceError(
+            f"the USB max_torque is a torque cap in N*m, 0 (no torque) or more, not {max_torque!r}"
+        )
+    for name, value in (("lead", lead), ("block", block)):
+        if value is not None and not (_number(value) and value > 0):
+            raise DeviceError(f"the USB {name} is a positive number of seconds, not {value!r}")
+    lo, hi = p.WATCHDOG_RANGE_MS
+    if watchdog_ms is not None and not _whole(watchdog_ms, lo, hi):
+        raise DeviceError(
+            f"the USB watchdog_ms is a whole number from {lo} to {hi}, not {watchdog_ms!r}"
+        )
+    if not _whole(timeout_ms, 1, math.inf):
+        raise DeviceError(f"the USB timeout_ms is a positive whole number, not {timeout_ms!r}")
 
 
 def _emulating() -> bool:

@@ -275,6 +275,12 @@ class Stream:
         k, b, m = layers["k"], layers["b"], layers.get("m")
         return tuple(stability_flags(time, k, b, m, dynamics, 1.0 / self.rate, hand_loads()))
 
+    def limit_text(self) -> str:
+        """The output limit in the device's own units: mNm, or a share of full scale."""
+        if self.link.info.kind == p.KIND_VIBROTACTILE:
+            return f"max output {self.limits[0] * 100:.4g}% of full scale"
+        return f"max torque {self.limits[0] * 1e3:.4g} mNm"
+
     def warnings(self) -> list[str]:
         """Sentences about values the host had to change before sending them."""
         out = []
@@ -282,7 +288,6 @@ class Stream:
             out.append(f"{self.zeroed} samples held NaN or infinite values and were sent as zero")
         if self.clamped:
             out.append(
-                f"{self.clamped} values were clamped to the device's limits "
-                f"(max torque {self.limits[0] * 1e3:.4g} mNm)"
+                f"{self.clamped} values were clamped to the device's limits ({self.limit_text()})"
             )
         return out

@@ -5,8 +5,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from timeline.cli.device_options import parse_option
 from timeline.cli.main import main
-from timeline.cli.play_cmd import parse_option
 from timeline.errors import HapticTimelineError
 from timeline.plugins.device_protocol import Telemetry
 

@@ -12,12 +12,13 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from timeline.cli.play_cmd import parse_option
+from timeline.cli.device_options import device_options
 from timeline.limits.actuators import PROFILES
 from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
 if TYPE_CHECKING:  # the limits, devices and mixer load when a design is checked, not for --help
     from timeline.limits.check import Report
+    from timeline.limits.findings import Finding
     from timeline.plugins.device_protocol import DeviceInfo, Hand
 
 FOUND = 3
@@ -57,6 +58,18 @@ def device_limits(info: DeviceInfo) -> dict[str, float]:
     return limits
 
 
+def finding_json(finding: Finding) -> dict[str, object]:
+    """A finding as JSON, its span in the units a person reads (`span_unit`: s, or deg)."""
+    from timeline.edits.naming import display_unit, displayed
+
+    out = finding.as_dict()
+    for key in ("start", "stop"):
+        if isinstance(out[key], float):
+            out[key] = displayed(out[key], finding.axis)  # type: ignore[arg-type]
+    out["span_unit"] = display_unit(finding.axis)
+    return out
+
+
 def as_json(path: str, info: DeviceInfo, report: Report, hand: Hand) -> str:
     device = asdict(info)
     return json.dumps(
@@ -65,7 +78,7 @@ def as_json(path: str, info: DeviceInfo, report: Report, hand: Hand) -> str:
             "device": device,
             "hand": str(hand),
             "limits": device_limits(info),
-            "findings": [f.as_dict() for f in report.findings],
+            "findings": [finding_json(f) for f in report.findings],
             "notes": list(report.notes),
         },
         indent=2,
@@ -81,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
     project = load(args.project)
     hand = Hand.parse(args.hand)
     chosen = actuator(args.actuator) if args.actuator else None
-    options = dict(parse_option(text) for text in args.device_option)
+    options = device_options(args.device_option)
     with open_device(args.device, **options) as device:
         info = device.info
     report = check(project, info, chosen, args.quality, hand)

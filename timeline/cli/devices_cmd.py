@@ -14,7 +14,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def describe_devices() -> list[str]:
-    """One line per device plugin (and per unit found); a plugin that finds nothing says so."""
+    """One line per device plugin (and per unit found); a plugin that finds nothing says so,
+    and why when a library it needs is missing."""
     from importlib.metadata import entry_points
 
     with warnings.catch_warnings(record=True) as caught:
@@ -33,7 +34,8 @@ def describe_devices() -> list[str]:
             lines.append(f"{name}: could not search ({exc})")
             continue
         if not found:
-            lines.append(f"{name}: nothing found")
+            why = loaded[name].missing()
+            lines.append(f"{name}: nothing found" + (f" ({why})" if why else ""))
         lines += [f"{name}: {unit}" for unit in found]
     return lines
 

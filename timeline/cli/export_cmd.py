@@ -4,9 +4,15 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 from typing import Any
 
-from timeline.cli.options import positive
+from timeline.cli.units import axis_rate, rate_on_axis
+from timeline.errors import HapticTimelineError
+
+FIRMWARE_TABLES = (".h", ".json")
+# Designs in seconds: vibration on a time axis, which a position project does not have.
+TIME_DESIGNS = {".ahap": "AHAP", ".haptic": "a .haptic file"}
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -25,10 +31,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--rate",
-        type=positive,
+        type=axis_rate,
         default=None,
         metavar="R",
-        help="sample rate of the written layers (default: the project's)",
+        help="sample rate of the written layers: samples per second, or per radian on a "
+        "position project; 1/deg also (default: the project's)",
     )
     p.add_argument(
         "--fixed-point",
@@ -43,10 +50,23 @@ def run(args: argparse.Namespace) -> int:
     from timeline.files.projectfile import load
     from timeline.rendering.aliasing import aliasing_notes
 
+    suffix = Path(args.output).suffix.lower()
+    if args.fixed_point and suffix not in FIRMWARE_TABLES:
+        raise HapticTimelineError(
+            f"--fixed-point applies to firmware tables (.h, .json), not to a "
+            f"{suffix or 'file without an extension'}"
+        )
     project = load(args.project)
+    if project.axis == "position" and suffix in TIME_DESIGNS:
+        raise HapticTimelineError(
+            f"{TIME_DESIGNS[suffix]} is vibration over time, and {Path(args.project).name} is a "
+            "position project with no time axis: export its tables (.h, .json) or layers "
+            "(.csv, .mat) instead"
+        )
+    rate = None if args.rate is None else rate_on_axis(args.rate, project.axis)
     options: dict[str, Any] = {"fixed_point": True} if args.fixed_point else {}
-    export_project(project, args.output, rate=args.rate, **options)
-    for note in aliasing_notes(project, args.rate):
+    export_project(project, args.output, rate=rate, **options)
+    for note in aliasing_notes(project, rate):
         print(f"haptic-timeline: warning: {note}", file=sys.stderr)
     print(f"exported {args.project} -> {args.output}", file=sys.stderr)
     return 0

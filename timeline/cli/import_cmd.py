@@ -9,6 +9,7 @@ from typing import TextIO
 
 from timeline.cli.notes import print_notes
 from timeline.cli.options import number, positive
+from timeline.cli.units import amount, axis_value, positive_axis_value
 from timeline.plugins.track_kinds import DEFAULT_KIND
 
 
@@ -29,7 +30,13 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         metavar="KIND",
         help=f"track kind for a tile (default {DEFAULT_KIND}); the first such track",
     )
-    p.add_argument("--at", type=number, default=0.0, metavar="SECONDS", help="start time")
+    p.add_argument("--at", type=axis_value, default=None, metavar="WHERE",
+                   help="where the import starts: seconds, or degrees on a position project "
+                   "(default 0)")  # fmt: skip
+    p.add_argument("--length", type=positive_axis_value, default=None, metavar="SPAN",
+                   help="stretch the import to this span: seconds, or degrees on a position "
+                   "project (default: its own length; a second of a recording is a radian on a "
+                   "position project)")  # fmt: skip
     p.add_argument("--gain", type=number, default=1.0, metavar="G", help="clip gain")
     p.add_argument(
         "--channel",
@@ -77,15 +84,18 @@ class ProgressBar:
 
 
 def run(args: argparse.Namespace) -> int:
+    from timeline.cli.import_axis import Arrangement, check_project_path
     from timeline.files.importing import import_into_project_file
 
+    check_project_path(args.into)
+    arrangement = Arrangement(args)
     bar = ProgressBar(f"importing {args.file}")
     try:
         clip_ids, notes = import_into_project_file(
             args.file,
             args.into,
             kind=args.track,
-            at=args.at,
+            arrange=arrangement,
             gain=args.gain,
             channel=args.channel,
             column=args.column,
@@ -95,7 +105,8 @@ def run(args: argparse.Namespace) -> int:
     finally:
         bar.close()
     print(
-        f"imported {args.file} into {args.into}: {len(clip_ids)} clip(s) at {args.at:g}",
+        f"imported {args.file} into {args.into}: {len(clip_ids)} clip(s) at "
+        f"{amount(arrangement.at, arrangement.axis)}",
         file=sys.stderr,
     )
     print_notes(notes)

@@ -79,6 +79,14 @@ def one_blas_thread() -> None:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
+def out_of_memory(args: argparse.Namespace) -> str:
+    """What running out of memory means for the verb: a file too large to read, or a range."""
+    source = getattr(args, "file", None) or getattr(args, "sound", None)
+    if source:
+        return f"ran out of memory reading {source}: it needs more memory than is free"
+    return "ran out of memory; try a shorter range or a lower rate"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one verb; a user's mistake prints one sentence on stderr and returns non-zero."""
     one_blas_thread()
@@ -105,8 +113,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"haptic-timeline: {exc.strerror or exc}{where}", file=sys.stderr)
         return 1
     except MemoryError:
-        print("haptic-timeline: ran out of memory; try a shorter range or a lower rate",
-              file=sys.stderr)  # fmt: skip
+        print(f"haptic-timeline: {out_of_memory(args)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print("haptic-timeline: interrupted", file=sys.stderr)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from timeline.cli.units import axis_rate, axis_value
 from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 
 
@@ -29,10 +30,12 @@ def positive(text: str) -> float:
 
 def add_range_options(p: argparse.ArgumentParser) -> None:
     """--rate, --quality, --start, --stop and --tracks."""
-    p.add_argument("--rate", type=positive, help="output rate (default: the project's)")
+    p.add_argument("--rate", type=axis_rate, help="output rate: samples per second, or per "
+                   "radian on a position project; 1/deg also (default: the project's)")  # fmt: skip
     p.add_argument("--quality", choices=list(PRESETS), default=DEFAULT_QUALITY)
-    p.add_argument("--start", type=number, default=0.0, help="start (s, or rad on position axis)")
-    p.add_argument("--stop", type=number, help="stop (default: end of the last clip)")
+    p.add_argument("--start", type=axis_value, help="start: seconds, or degrees on a position "
+                   "project; 0.5s, 90deg, 1.2rad also (default: 0)")  # fmt: skip
+    p.add_argument("--stop", type=axis_value, help="stop, as --start (default: the project's end)")
     p.add_argument("--tracks", help="comma-separated track names or ids (default: all)")
 
 

@@ -6,8 +6,10 @@ import argparse
 import math
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from timeline.cli.device_options import device_options
+from timeline.cli.units import Typed, amount, axis_value, on_axis
 from timeline.errors import HapticTimelineError
 from timeline.files.atomic import check_target
 from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
@@ -15,7 +17,8 @@ from timeline.signal.render_presets import DEFAULT_QUALITY, PRESETS
 if TYPE_CHECKING:  # numpy, the devices and the mixer load when a project is played, not for --help
     import numpy as np
 
-    from timeline.plugins.device_protocol import PositionProgram, Telemetry
+    from timeline.model import Project
+    from timeline.plugins.device_protocol import DeviceInfo, PositionProgram, Telemetry
     from timeline.rendering.playback import Playback
 
 
@@ -38,10 +41,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
             " grasp) or before a mode with a dash (pinch-turn:90); see docs/devices.md"
         ),
     )
-    p.add_argument("--duration", type=float, help="seconds to play (default: the project's)")
-    p.add_argument(
-        "--origin", type=float, help="position projects: angle (deg) where the knob starts"
-    )
+    p.add_argument("--duration", type=axis_value,
+                   help="seconds to play, 2 or 2s (default: the project's)")  # fmt: skip
+    p.add_argument("--origin", type=axis_value, help="position projects: the table angle where "
+                   "the knob starts, in degrees (90, 90deg or 1.57rad)")  # fmt: skip
     p.add_argument("-o", "--output", help="write telemetry to this .csv")
     p.add_argument("--plot", help="write a plot of layers, angle and torque to this .png")
     p.add_argument("--quality", default=DEFAULT_QUALITY, choices=list(PRESETS))
@@ -69,24 +72,6 @@ class _Progress:
             print(file=sys.stderr)
 
 
-def parse_option(text: str) -> tuple[str, Any]:
-    """KEY=VALUE with VALUE read as an integer (0x.. too), a number, true/false, or text."""
-    key, sep, value = text.partition("=")
-    if not sep or not key.strip():
-        raise HapticTimelineError(f"a device option is KEY=VALUE, not {text!r}")
-    key, value = key.strip().replace("-", "_"), value.strip()
-    if value.lower() in ("true", "yes", "on"):
-        return key, True
-    if value.lower() in ("false", "no", "off"):
-        return key, False
-    for convert in (lambda v: int(v, 0), float):
-        try:
-            return key, convert(value)
-        except ValueError:
-            pass
-    return key, value
-
-
 def run(args: argparse.Namespace) -> int:
     from timeline.files.projectfile import load
     from timeline.plugins.device_protocol import Hand, open_device
@@ -95,16 +80,19 @@ def run(args: argparse.Namespace) -> int:
 
     project = load(args.project)
     hand = Hand.parse(args.hand)
-    if args.duration is not None and not (math.isfinite(args.duration) and args.duration > 0):
-        raise HapticTimelineError(
-            f"--duration must be a positive number of seconds, not {args.duration}"
-        )
-    origin = None if args.origin is None else math.radians(args.origin)
+    duration = None
+    if args.duration is not None:
+        duration = on_axis(args.duration, "time", "--duration", owner="--duration")
+        if duration <= 0:
+            raise HapticTimelineError(
+                f"--duration must be a positive number of seconds, not {args.duration.text}"
+            )
+    origin = _origin(project, args.origin, Path(args.project).name)
     _check_outputs(args)
     progress = _Progress()
-    options = dict(parse_option(text) for text in args.device_option)
-    with open_device(args.device, **options) as device:
-        playback = prepare(project, device.info, args.duration, hand, args.quality, origin)
+    with open_device(args.device, **device_options(args.device_option)) as device:
+        _check_duration(duration, device.info)
+        playback = prepare(project, device.info, duration, hand, args.quality, origin)
         rate = device.info.rate if project.axis == "time" else project.rate
         for note in aliasing_notes(project, rate):
             print(f"haptic-timeline: warning: {note}", file=sys.stderr)
@@ -124,9 +112,47 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _origin(project: Project, typed: Typed | None, name: str) -> float | None:
+    """--origin in radians: only on a position project, and on its table (one sentence if not)."""
+    if typed is None:
+        return None
+    if project.axis != "position":
+        raise HapticTimelineError(
+            f"--origin is where the knob starts on a position project's table; {name} is on "
+            "the time axis"
+        )
+    origin = on_axis(typed, "position", "--origin")
+    starts = [c.start for t in project.tracks for c in t.clips]
+    low, high = min([0.0, *starts]), project.duration
+    if not low <= origin <= high:
+        raise HapticTimelineError(
+            f"--origin {amount(origin, 'position')} is outside {name}'s table "
+            f"({amount(low, 'position')} to {amount(high, 'position')})"
+        )
+    return origin
+
+
+def _check_duration(duration: float | None, info: DeviceInfo) -> None:
+    """Refuse a --duration longer than one play can hold, in seconds and hours."""
+    from timeline.rendering.mixer import MAX_SAMPLES
+
+    longest = MAX_SAMPLES / info.rate
+    if duration is not None and duration > longest:
+        raise HapticTimelineError(
+            f"--duration {duration:g} s is longer than {info.name} can play in one go "
+            f"({longest:.0f} s, {longest / 3600:.1f} hours, at {info.rate:g} Hz)"
+        )
+
+
 def _check_outputs(args: argparse.Namespace) -> None:
     """Refuse an unwritable -o or --plot before playing, not after."""
     if args.output:
+        suffix = Path(args.output).suffix.lower()
+        if suffix != ".csv":
+            raise HapticTimelineError(
+                f"-o writes the telemetry as CSV: give a file ending in .csv, not "
+                f"{suffix or 'one without an extension'}"
+            )
         check_target(args.output)
     if args.plot:
         check_target(args.plot)

@@ -22,9 +22,17 @@ def unique_tile_name(project: Project, base: str) -> str:
     return unique_name(base, (t.name for t in project.tiles.values()))
 
 
+def display_unit(axis: str) -> str:
+    """The unit a designer reads on this axis: s, or deg on a position axis (radians inside)."""
+    return "s" if axis == "time" else "deg"
+
+
+def displayed(x: float, axis: str) -> float:
+    """An axis value (s or rad) as a designer reads it (s or deg)."""
+    return x if axis == "time" else math.degrees(x)
+
+
 def span_text(a: float, b: float, axis: str) -> str:
     """A range of the axis as a designer reads it: "0.25-0.5 s", or "20-260 deg" in a position
     project (radians shown as degrees, to four significant figures)."""
-    if axis == "position":
-        return f"{math.degrees(a):.4g}-{math.degrees(b):.4g} deg"
-    return f"{a:.4g}-{b:.4g} s"
+    return f"{displayed(a, axis):.4g}-{displayed(b, axis):.4g} {display_unit(axis)}"

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from timeline import edits
 from timeline.errors import EditError, FormatError, HapticTimelineError
@@ -23,6 +23,19 @@ from timeline.plugins.file_formats import (
     readers_for,
 )
 from timeline.plugins.track_kinds import DEFAULT_KIND, track_kind
+
+
+class Arrange(Protocol):
+    """Where an import into a project file starts and what it places, decided by the caller
+    (the command line's units: degrees on a position project, and --length)."""
+
+    def start(self, project: Project) -> float:
+        """Where the import starts, in axis units (asked before the file is read)."""
+        ...
+
+    def placements(self, project: Project, imported: Imported) -> Imported:
+        """What to place of what the file held."""
+        ...
 
 
 def check_readable(path: Path) -> None:
@@ -177,19 +190,25 @@ def import_into_project_file(
     at: float = 0.0,
     gain: float = 1.0,
     progress: Progress | None = None,
+    arrange: Arrange | None = None,
     **options: Any,
 ) -> tuple[list[str], tuple[str, ...]]:
     """Import into a project file (created on the time axis at 10 kHz if missing), atomically.
 
     Returns the new clip ids and the reader's notes (what it assumed, clamped or skipped). On any
-    error the project file is left exactly as it was.
+    error the project file is left exactly as it was. `arrange`, when given, decides where the
+    import starts instead of `at` and what it places.
     """
     from timeline.files import projectfile
 
     project_path = Path(project_path)
     project = projectfile.load(project_path) if project_path.exists() else edits.new_project()
+    if arrange is not None:
+        at = arrange.start(project)
     _check_start(project, at)  # before the (maybe long) read
     imported = read_file(path, progress=progress, **options)
+    if arrange is not None:
+        imported = arrange.placements(project, imported)
     project, clip_ids = place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
     projectfile.save(project, project_path)
     return clip_ids, imported.notes

@@ -1,20 +1,33 @@
-"""A summary of a project: tracks, clips, duration, layers and variants."""
+"""A summary of a project: tracks, clips, duration, markers, layers and variants.
+
+Places and lengths on the axis are given as a designer reads them: seconds, or degrees on a
+position project (radians inside); `unit` names which. The rate stays in samples per second or
+per radian (`rate_unit`), the unit files and firmware tables use.
+"""
 
 from __future__ import annotations
 
 from typing import Any
 
+from timeline.edits.naming import display_unit, displayed
 from timeline.model import Project
 from timeline.plugins.track_kinds import track_kind
 
 
 def summary(project: Project) -> dict[str, Any]:
     """A JSON-ready description of the project."""
+    axis = project.axis
+
+    def shown(x: float) -> float:
+        return displayed(x, axis)
+
+    loop = project.loop
     return {
-        "axis": project.axis,
-        "unit": project.unit,
+        "axis": axis,
+        "unit": display_unit(axis),
         "rate": project.rate,
-        "duration": project.duration,
+        "rate_unit": f"samples/{project.unit}",
+        "duration": shown(project.duration),
         "layers": sorted({t.kind for t in project.tracks if t.clips}),
         "tracks": [
             {
@@ -29,14 +42,17 @@ def summary(project: Project) -> dict[str, Any]:
                     {
                         "id": c.id,
                         "tile": project.tiles[c.tile_id].name,
-                        "start": c.start,
-                        "end": c.end,
+                        "start": shown(c.start),
+                        "end": shown(c.end),
+                        "length": shown(c.duration),
                     }
                     for c in t.clips
                 ],
             }
             for t in project.tracks
         ],
+        "markers": [{"name": m.name, "at": shown(m.at)} for m in project.markers],
+        "loop": None if loop is None else [shown(loop.start), shown(loop.stop)],
         "tiles": len(project.tiles),
         "palette": {tab.name: len(tab.tile_ids) for tab in project.palette},
         "variants": [v.name for v in project.variants],
@@ -48,9 +64,12 @@ def summary(project: Project) -> dict[str, Any]:
 def describe(project: Project) -> str:
     """The summary as text for a person."""
     s = summary(project)
+    unit = s["unit"]
+    rate = f"{s['rate']:g} {s['rate_unit']}"
+    if s["axis"] == "position":
+        rate += f" (one every {1 / s['rate'] * displayed(1.0, 'position'):.4g} deg)"
     lines = [
-        f"{s['axis']} axis, {s['rate']:g} samples/{s['unit']}, "
-        f"duration {s['duration']:.6g} {s['unit']}",
+        f"{s['axis']} axis, {rate}, duration {s['duration']:.6g} {unit}",
         f"layers: {', '.join(s['layers']) or 'none'}",
     ]
     for t in s["tracks"]:
@@ -60,6 +79,15 @@ def describe(project: Project) -> str:
             f"{len(t['clips'])} clip(s)"
         )
         for c in t["clips"]:
-            lines.append(f"  {c['id']}: {c['tile']} {c['start']:.6g} to {c['end']:.6g}")
+            lines.append(
+                f"  {c['id']}: {c['tile']} {c['start']:.6g} to {c['end']:.6g} {unit} "
+                f"({c['length']:.6g} {unit})"
+            )
+    if s["markers"]:
+        lines.append(
+            "markers: " + ", ".join(f"{m['name']} {m['at']:.6g} {unit}" for m in s["markers"])
+        )
+    if s["loop"]:
+        lines.append(f"loop: {s['loop'][0]:.6g} to {s['loop'][1]:.6g} {unit}")
     lines.append(f"variants: {', '.join(s['variants']) or 'none'}")
     return "\n".join(lines)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import abc
+import inspect
 from collections.abc import Callable
 from types import TracebackType
 from typing import Any
@@ -65,6 +66,21 @@ class Device(abc.ABC):
         """Describe each unit of this device type that is present (empty when none)."""
         return []
 
+    @classmethod
+    def missing(cls) -> str | None:
+        """Why no unit can be found on this computer (a library the plugin needs is missing),
+        in one sentence; None when nothing is missing."""
+        return None
+
+    @classmethod
+    def options(cls) -> tuple[str, ...] | None:
+        """The options the constructor takes (`--device-option KEY=VALUE`); None when it takes
+        any keyword."""
+        params = list(inspect.signature(cls.__init__).parameters.values())[1:]
+        if any(p.kind is p.VAR_KEYWORD for p in params):
+            return None
+        return tuple(p.name for p in params if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY))
+
 
 def device_names() -> list[str]:
     """Names of the registered device plugins."""
@@ -72,8 +88,18 @@ def device_names() -> list[str]:
 
 
 def open_device(name: str = "sim", **options: Any) -> Device:
-    """Find a device plugin by name, construct it with options, open it and return it."""
+    """Find a device plugin by name, construct it with options, open it and return it.
+
+    An option the plugin does not take is refused with one sentence naming the ones it takes.
+    """
     cls = plugins.get(plugins.DEVICES, name)
+    known = cls.options()
+    unknown = [key for key in options if known is not None and key not in known]
+    if unknown:
+        raise DeviceError(
+            f"the {name} device does not take those options ({', '.join(unknown)}); it takes "
+            f"{', '.join(known or ()) or 'none'}"
+        )
     try:
         device = cls(**options)
     except TypeError as exc:
