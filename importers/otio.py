@@ -22,9 +22,12 @@ from typing import Any
 import numpy as np
 import opentimelineio as otio
 
+from importers import otio_fields
+from importers.otio_context import read_context
+from importers.otio_time import Clock, video_rate
 from timeline.errors import HapticTimelineError
 from timeline.files import crash_isolation, exporting
-from timeline.model import Clip, Fade, Project, Track
+from timeline.model import Clip, Project, Track
 from timeline.plugins.file_formats import FormatError, Imported, Placement, Progress, TrackInfo
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.tiles.vibration_tile import VibrationTile
@@ -112,23 +115,19 @@ def _lanes(track: Track) -> list[list[Clip]]:
     return lanes or [[]]
 
 
-def _rt(seconds: float, rate: float) -> otio.opentime.RationalTime:
-    return otio.opentime.RationalTime(seconds * rate, rate)
-
-
 def _file_part(text: str) -> str:
     return re.sub(r"[^0-9A-Za-z._-]+", "_", text).strip("._") or "track"
 
 
 def _media(
-    project: Project, track: Track, target: Path
+    project: Project, track: Track, target: Path, clock: Clock
 ) -> dict[str, otio.schema.ExternalReference]:
     """Render one track beside the .otio (WAV, and .haptic for drive); references to the files."""
     if project.axis != "time" or not track.clips:
         return {}
     alone = replace(project, tracks=(replace(track, mute=False, solo=False),))
     stem = f"{target.stem}-{_file_part(track.name)}"
-    available = otio.opentime.TimeRange(_rt(0.0, project.rate), _rt(alone.duration, project.rate))
+    available = otio.opentime.TimeRange(clock.at(0.0), clock.whole(alone.duration))
     refs = {}
     wav = target.with_name(stem + ".wav")
     exporting.write_layers(exporting.project_layers(alone), wav)
@@ -160,7 +159,8 @@ class OtioFormat:
     def write(self, source: Project, path: Path, **options: Any) -> None:
         """Write the project's tracks as OTIO tracks, with our fields in metadata, and each
         track's rendered media beside the file."""
-        rate = source.rate
+        asked = options.get("rate")
+        clock = Clock(source.rate, False) if asked is None else Clock(video_rate(asked), True)
         target = Path(options.get("target", path))
         title = source.metadata.get("title")
         timeline = otio.schema.Timeline(
@@ -170,11 +170,11 @@ class OtioFormat:
         timeline.metadata[KEY] = {
             "version": VERSION,
             "axis": source.axis,
-            "rate": rate,
+            "rate": source.rate,
             "tiles": {tid: encode_tile(source.tile(tid)) for tid in sorted(used)},
         }
         for track in source.tracks:
-            media = _media(source, track, target)
+            media = _media(source, track, target, clock)
             for lane_index, lane in enumerate(_lanes(track)):
                 out = otio.schema.Track(name=track.name, kind=otio.schema.TrackKind.Audio)
                 out.metadata[KEY] = {
@@ -189,13 +189,13 @@ class OtioFormat:
                 cursor = 0.0
                 for clip in lane:
                     if clip.start > cursor:
-                        out.append(otio.schema.Gap(duration=_rt(clip.start - cursor, rate)))
+                        out.append(otio.schema.Gap(duration=clock.span(cursor, clip.start)))
                     item = otio.schema.Clip(
                         name=source.tile(clip.tile_id).name,
                         media_reference=otio.schema.MissingReference(),
                         source_range=otio.opentime.TimeRange(
-                            _rt(clip.start if media else clip.source_in, rate),
-                            _rt(clip.duration, rate),
+                            clock.at(clip.start if media else clip.source_in),
+                            clock.span(clip.start, clip.end),
                         ),
                     )
                     if media:
@@ -206,8 +206,12 @@ class OtioFormat:
                         **_clip_fields(clip),
                     }
                     out.append(item)
-                    cursor = max(cursor, clip.start) + clip.duration
+                    cursor = clip.end
                 timeline.tracks.append(out)
+        if clock.frames:  # editorial adapters hang audio on a picture track: an empty one
+            picture = otio.schema.Track(name="Picture", kind=otio.schema.TrackKind.Video)
+            picture.append(otio.schema.Gap(duration=clock.span(0.0, source.duration)))
+            timeline.tracks.insert(0, picture)
         otio.adapters.write_to_file(timeline, str(path), adapter_name="otio_json")
 
     def read(
@@ -225,7 +229,8 @@ class OtioFormat:
 
 
 def _read(path: Path) -> Imported:
-    """The tracks and clips of an OTIO file (run in a child process by OtioFormat.read)."""
+    """The tracks and clips of an OTIO file (run in a child process by OtioFormat.read): ours
+    exactly, a video editor's as context (importers.otio_context)."""
     try:
         timeline = otio.adapters.read_from_file(str(path), adapter_name="otio_json")
     except Exception as exc:  # OTIO's parser raises many types on malformed input
@@ -235,53 +240,40 @@ def _read(path: Path) -> Imported:
         raise FormatError(f"{path.name} holds no OTIO timeline")
     meta = timeline.metadata.get(KEY)
     if meta is None or "tiles" not in meta:
-        raise FormatError(f"{path.name} was not written by haptic-timeline (no haptic tiles)")
+        return read_context(timeline, path)
     tiles = {str(k): decode_tile(v) for k, v in dict(meta["tiles"]).items()}
+    axis = meta.get("axis", "time")
     placements: list[Placement] = []
     infos: dict[str, TrackInfo] = {}
     for track in timeline.tracks:
         tmeta = track.metadata.get(KEY)
         if tmeta is None:
             continue
-        track_key, info = _track_info(tmeta, path.name)
-        infos.setdefault(track_key, info)
+        info = otio_fields.track_info(tmeta, path.name)
+        infos.setdefault(info.key, info)
         for item in track:
             cmeta = item.metadata.get(KEY) if isinstance(item, otio.schema.Clip) else None
             if cmeta is not None:
-                placements.append(_placement(cmeta, tiles, track_key, info.kind, path.name))
+                placements.append(_placement(cmeta, tiles, info, axis, path.name))
     if not placements:
         raise FormatError(f"{path.name} holds no haptic clips")
     return Imported(tuple(placements), tuple(infos.values()))
 
 
-def _track_info(meta: Any, name: str) -> tuple[str, TrackInfo]:
-    try:
-        key = str(meta["track"])
-        info = TrackInfo(
-            key,
-            str(meta["name"]),
-            str(meta["kind"]),
-            float(meta["gain"]),
-            bool(meta["mute"]),
-            bool(meta["solo"]),
-        )
-        return key, info
-    except (KeyError, TypeError, ValueError):
-        raise FormatError(f"a track's haptic settings in {name} are malformed") from None
-
-
-def _placement(meta: Any, tiles: dict[str, Tile], track: str, kind: str, name: str) -> Placement:
+def _placement(
+    meta: Any, tiles: dict[str, Tile], track: TrackInfo, axis: str, name: str
+) -> Placement:
     try:
         tile = tiles[str(meta["tile"])]
-        clip = {k: meta[k] for k in _CLIP_FIELDS}
-        clip["fade_in"] = Fade(**dict(clip["fade_in"]))
-        clip["fade_out"] = Fade(**dict(clip["fade_out"]))
-        clip["reverse"] = bool(clip["reverse"])
-        return Placement(tile, float(meta["start"]), kind, track, clip)
+    except (KeyError, TypeError):
+        raise FormatError(f"a clip in {name} names a tile the file does not hold") from None
+    fields = otio_fields.clip_fields(meta, name)
+    start = otio_fields.start(meta, name, axis)
+    try:
+        Clip("check", "check", start, **fields)  # the clip's own rules, before any project sees it
     except HapticTimelineError as exc:
         raise FormatError(f"a clip in {name} is invalid: {exc}") from None
-    except (KeyError, TypeError, ValueError):
-        raise FormatError(f"a clip's haptic settings in {name} are malformed") from None
+    return Placement(tile, start, track.kind, track.key, fields)
 
 
 FORMAT = OtioFormat()
