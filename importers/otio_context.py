@@ -25,6 +25,7 @@ from timeline.plugins.file_formats import FormatError, Imported, Placement, Trac
 from timeline.tiles import GeneratorTile, Tile
 
 AUDIO = "audio"
+MAX_EDIT_SECONDS = 24 * 3600.0  # what lies beyond a day of edit is left out (noted)
 
 
 class _Media:
@@ -34,18 +35,30 @@ class _Media:
         self.folder = folder
         self.tiles: dict[Path, Tile | None] = {}
         self.missing: list[str] = []
+        self._silent: dict[tuple[str, float], Tile] = {}
+
+    def silent(self, name: str, length: float) -> Tile:
+        """A silent stand-in for a clip whose medium cannot be read (one per name and length)."""
+        key = (name, length)
+        if key not in self._silent:
+            self._silent[key] = GeneratorTile("constant", length, (("value", 0.0),), name)
+        return self._silent[key]
 
     def path(self, reference: Any) -> Path | None:
         """The file a media reference names, relative ones against the .otio's folder."""
         url = getattr(reference, "target_url", None)
         if not isinstance(url, str) or not url.strip():
             return None
-        if url.startswith("file:"):
-            url = otio.url_utils.filepath_from_url(url)
-        elif "://" in url:
+        if "://" in url and not url.startswith("file:"):
             return None  # a stream or web address: not a local file
-        path = Path(url)
-        return path if path.is_absolute() else self.folder / path
+        try:
+            if url.startswith("file:"):
+                url = otio.url_utils.filepath_from_url(url)
+            path = Path(url)
+            # one key per file, however it is named
+            return (path if path.is_absolute() else self.folder / path).resolve()
+        except (OSError, RuntimeError, ValueError):  # a link loop, a NUL in the name
+            return None
 
     def tile(self, clip: otio.schema.Clip) -> Tile | None:
         path = self.path(clip.media_reference)
@@ -62,11 +75,11 @@ class _Media:
 def _sound(path: Path) -> Tile | None:
     """The sound in a file, or None when it is missing or not a sound file."""
     fmt = all_formats().get("audio")
-    if fmt is None or path.suffix.lower() not in fmt.extensions or not path.is_file():
-        return None
     try:
+        if fmt is None or path.suffix.lower() not in fmt.extensions or not path.is_file():
+            return None
         result = fmt.read(path)
-    except (HapticTimelineError, OSError):
+    except (HapticTimelineError, OSError, ValueError):
         return None
     return result if isinstance(result, Tile) else None
 
@@ -80,39 +93,54 @@ def _placements(
 ) -> tuple[list[Placement], list[TrackInfo]]:
     placements: list[Placement] = []
     infos: list[TrackInfo] = []
-    audio = [t for t in timeline.tracks if isinstance(t, otio.schema.Track) and t.kind == "Audio"]
-    for number, track in enumerate(audio, start=1):
+    for number, track in enumerate(_tracks(timeline, "Audio"), start=1):
         key = f"otio-audio-{number}"
         name = track.name.strip() or f"A{number}"
         infos.append(TrackInfo(key, name, AUDIO, 1.0, not track.enabled))
+        try:
+            end = min(_seconds(track.trimmed_range().duration), MAX_EDIT_SECONDS)
+        except Exception:  # OTIO raises its own errors when a child has no range at all
+            notes.append(f"audio track {name!r} has a clip with no time range and was left out")
+            continue
         for clip in track.find_clips():
-            placement = _placement(clip, timeline, key, media, notes)
+            if not clip.enabled:
+                notes.append(f"audio clip {clip.name!r} is disabled in the edit; left out")
+                continue
+            placement = _placement(clip, timeline, (key, end), media, notes)
             if placement is not None:
                 placements.append(placement)
     return placements, infos
 
 
 def _placement(
-    clip: otio.schema.Clip, timeline: otio.schema.Timeline, key: str, media: _Media, notes: list
+    clip: otio.schema.Clip,
+    timeline: otio.schema.Timeline,
+    track: tuple[str, float],
+    media: _Media,
+    notes: list[str],
 ) -> Placement | None:
-    """An audio clip at its time in the edit, playing its part of its medium."""
+    """An audio clip at its time in the edit, playing its part of its medium; the part outside
+    its track's trimmed range (before 0 or after the track's end) is cut off."""
+    key, end = track
     try:
         trimmed = clip.trimmed_range()
         span = clip.transformed_time_range(trimmed, timeline.tracks)
     except Exception:  # OTIO raises its own errors for a clip with no range at all
         notes.append(f"audio clip {clip.name!r} has no time range and was left out")
         return None
-    start, length = _seconds(span.start_time), _seconds(span.duration)
-    if not (math.isfinite(start) and math.isfinite(length)) or length <= 0 or start < 0:
+    start, stop = _seconds(span.start_time), _seconds(span.end_time_exclusive())
+    lo, hi = max(start, 0.0), min(stop, end)
+    if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
         notes.append(f"audio clip {clip.name!r} lies outside the edit and was left out")
         return None
+    skip, start, length = lo - start, lo, hi - lo
     tile = media.tile(clip)
     if tile is None:
-        silent = GeneratorTile("constant", length, (("value", 0.0),), clip.name or "audio")
-        return Placement(silent, start, AUDIO, key)
+        silent = media.silent(clip.name or "audio", length)
+        return Placement(silent, start, AUDIO, key, {})  # a plain dict: the result is pickled
     available = getattr(clip.media_reference, "available_range", None)
     origin = _seconds(available.start_time) if available is not None else 0.0
-    source_in = max(0.0, _seconds(trimmed.start_time) - origin)
+    source_in = max(0.0, _seconds(trimmed.start_time) - origin + skip)
     source_out = min(tile.duration, source_in + length)
     if source_out <= source_in:
         notes.append(f"audio clip {clip.name!r} starts past the end of its medium; left out")
@@ -124,45 +152,69 @@ def _placement(
 def _markers(timeline: otio.schema.Timeline) -> list[Marker]:
     """Markers of the timeline's stack, its tracks and every item, at their times in the edit."""
     found: list[Marker] = []
-    items = [timeline.tracks, *timeline.tracks.find_children()]
-    for item in items:
+    for item in [timeline.tracks, *timeline.tracks.find_children()]:
         for marker in getattr(item, "markers", ()):
-            try:
-                at = _seconds(
-                    item.transformed_time(marker.marked_range.start_time, timeline.tracks)
-                )
-            except Exception:  # a marker on an item OTIO cannot place in time
-                continue
-            if math.isfinite(at) and at >= 0:
+            at = _at(item, marker.marked_range.start_time, timeline)
+            if at is not None:
                 label = marker.name.strip() or f"{marker.color or 'marker'}".lower()
                 found.append(Marker(label, at))
-    return sorted(found, key=lambda m: m.at)
+    return found
+
+
+def _cuts(timeline: otio.schema.Timeline) -> list[Marker]:
+    """Where each shot of an enabled picture track starts, named after the shot."""
+    cuts: dict[tuple[str, float], Marker] = {}
+    for track in _tracks(timeline, "Video"):
+        for clip in track.find_clips():
+            if not clip.enabled:
+                continue
+            at = _at(clip, _start(clip), timeline)
+            if at is not None:
+                label = clip.name.strip() or "cut"
+                cuts.setdefault((label, at), Marker(label, at))
+    return list(cuts.values())
+
+
+def _start(item: Any) -> otio.opentime.RationalTime:
+    return item.trimmed_range().start_time
+
+
+def _at(
+    item: Any, time: otio.opentime.RationalTime, timeline: otio.schema.Timeline
+) -> float | None:
+    """A time of an item in the edit's seconds, or None when OTIO cannot place it (or before 0)."""
+    try:
+        at = _seconds(item.transformed_time(time, timeline.tracks))
+    except Exception:  # OTIO raises its own errors for an item with no range
+        return None
+    return at if math.isfinite(at) and 0 <= at <= MAX_EDIT_SECONDS else None
+
+
+def _tracks(timeline: otio.schema.Timeline, kind: str) -> list[otio.schema.Track]:
+    return [t for t in timeline.tracks if isinstance(t, otio.schema.Track) and t.kind == kind]
 
 
 def read_context(timeline: otio.schema.Timeline, path: Path) -> Imported:
-    """A foreign timeline's sound and markers (FormatError when it has neither)."""
+    """A foreign timeline's sound, markers and cuts (FormatError when it has none of them)."""
     notes: list[str] = []
     media = _Media(path.parent)
     placements, infos = _placements(timeline, media, notes)
     markers = _markers(timeline)
-    if not placements and not markers:
+    cuts = _cuts(timeline)
+    if not placements and not markers and not cuts:
+        why = f" ({notes[0]})" if notes else ""
         raise FormatError(
-            f"{path.name} was not written by haptic-timeline and holds no audio clips or markers "
-            "to design against"
+            f"{path.name} was not written by haptic-timeline and holds no audio clips, markers "
+            f"or cuts to design against{why}"
         )
     if media.missing:
-        shown = ", ".join(sorted(set(media.missing))[:3])
-        more = len(set(media.missing)) - 3
+        names = sorted(set(media.missing))
+        more = f" and {len(names) - 3} more" if len(names) > 3 else ""
         notes.append(
             f"{len(media.missing)} audio clip(s) placed silent: their media were not found or "
-            f"are not sound files ({shown}{f' and {more} more' if more > 0 else ''})"
+            f"are not sound files ({', '.join(names[:3])}{more})"
         )
-    pictures = sum(
-        1
-        for t in timeline.tracks
-        if isinstance(t, otio.schema.Track) and t.kind == "Video"
-        for _ in t.find_clips()
-    )
-    if pictures:
-        notes.append(f"{pictures} video clip(s) left out: pictures are not shown")
-    return Imported(tuple(placements), tuple(infos), tuple(notes), tuple(markers))
+    if cuts:
+        notes.append(f"{len(cuts)} picture cut(s) placed as markers named after their shots")
+    found = sorted([*markers, *cuts], key=lambda m: m.at)
+    return Imported(tuple(placements), tuple(infos), tuple(notes), tuple(found))
