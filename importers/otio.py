@@ -23,6 +23,7 @@ import numpy as np
 import opentimelineio as otio
 
 from importers import otio_fields
+from importers.otio_bundle import MediaStore, opened, write_bundle
 from importers.otio_context import read_context
 from importers.otio_time import Clock, video_rate
 from timeline.errors import HapticTimelineError
@@ -120,24 +121,21 @@ def _file_part(text: str) -> str:
 
 
 def _media(
-    project: Project, track: Track, target: Path, clock: Clock
+    project: Project, track: Track, stem: str, store: MediaStore, clock: Clock
 ) -> dict[str, otio.schema.ExternalReference]:
-    """Render one track beside the .otio (WAV, and .haptic for drive); references to the files."""
+    """Render one track as a WAV (and a .haptic for drive) into the store; references to them."""
     if project.axis != "time" or not track.clips:
         return {}
     alone = replace(project, tracks=(replace(track, mute=False, solo=False),))
-    stem = f"{target.stem}-{_file_part(track.name)}"
+    stem = f"{stem}-{_file_part(track.name)}"
     available = otio.opentime.TimeRange(clock.at(0.0), clock.whole(alone.duration))
-    refs = {}
-    wav = target.with_name(stem + ".wav")
+    wav = store.path(stem + ".wav")
     exporting.write_layers(exporting.project_layers(alone), wav)
-    refs[DEFAULT] = otio.schema.ExternalReference(target_url=wav.name, available_range=available)
+    refs = {DEFAULT: otio.schema.ExternalReference(store.url(wav), available_range=available)}
     if track.kind == "drive":
-        haptic = target.with_name(stem + ".haptic")
+        haptic = store.path(stem + ".haptic")
         exporting.export_project(alone, haptic)
-        refs["haptic"] = otio.schema.ExternalReference(
-            target_url=haptic.name, available_range=available
-        )
+        refs["haptic"] = otio.schema.ExternalReference(store.url(haptic), available_range=available)
     return refs
 
 
@@ -147,71 +145,84 @@ def _clip_fields(clip: Clip) -> dict[str, Any]:
     return out
 
 
+def _timeline(
+    source: Project, target: Path, store: MediaStore, clock: Clock
+) -> otio.schema.Timeline:
+    """The project as an OTIO timeline; its tracks' media rendered into the store."""
+    title = source.metadata.get("title")
+    timeline = otio.schema.Timeline(name=title if isinstance(title, str) and title else target.stem)
+    used = {c.tile_id for t in source.tracks for c in t.clips}
+    timeline.metadata[KEY] = {
+        "version": VERSION,
+        "axis": source.axis,
+        "rate": source.rate,
+        "tiles": {tid: encode_tile(source.tile(tid)) for tid in sorted(used)},
+    }
+    for track in source.tracks:
+        media = _media(source, track, target.stem, store, clock)
+        for lane_index, lane in enumerate(_lanes(track)):
+            out = otio.schema.Track(name=track.name, kind=otio.schema.TrackKind.Audio)
+            out.metadata[KEY] = {
+                "track": track.id,
+                "lane": lane_index,
+                "kind": track.kind,
+                "name": track.name,
+                "gain": track.gain,
+                "mute": track.mute,
+                "solo": track.solo,
+            }
+            cursor = 0.0
+            for clip in lane:
+                if clip.start > cursor:
+                    out.append(otio.schema.Gap(duration=clock.span(cursor, clip.start)))
+                item = otio.schema.Clip(
+                    name=source.tile(clip.tile_id).name,
+                    media_reference=otio.schema.MissingReference(),
+                    source_range=otio.opentime.TimeRange(
+                        clock.at(clip.start if media else clip.source_in),
+                        clock.span(clip.start, clip.end),
+                    ),
+                )
+                if media:
+                    item.set_media_references({k: v.clone() for k, v in media.items()}, DEFAULT)
+                item.metadata[KEY] = {
+                    "tile": clip.tile_id,
+                    "start": clip.start,
+                    **_clip_fields(clip),
+                }
+                out.append(item)
+                cursor = clip.end
+            timeline.tracks.append(out)
+    if clock.frames:  # editorial adapters hang audio on a picture track: an empty one, a frame
+        # longer than the design so that a clip rounded to 0 frames at its end still lies on it
+        picture = otio.schema.Track(name="Picture", kind=otio.schema.TrackKind.Video)
+        length = clock.span(0.0, source.duration) + otio.opentime.RationalTime(1, clock.rate)
+        picture.append(otio.schema.Gap(duration=length))
+        timeline.tracks.insert(0, picture)
+    return timeline
+
+
 class OtioFormat:
     """OpenTimelineIO: writes every track and clip; reads back files this program wrote."""
 
     name = "otio"
-    extensions = (".otio",)
+    extensions = (".otio", ".otioz")
     reads = "design"
     writes = "project"
     options = ()
 
     def write(self, source: Project, path: Path, **options: Any) -> None:
         """Write the project's tracks as OTIO tracks, with our fields in metadata, and each
-        track's rendered media beside the file."""
+        track's rendered media beside the file (.otio) or inside the bundle (.otioz)."""
         asked = options.get("rate")
         clock = Clock(source.rate, False) if asked is None else Clock(video_rate(asked), True)
         target = Path(options.get("target", path))
-        title = source.metadata.get("title")
-        timeline = otio.schema.Timeline(
-            name=title if isinstance(title, str) and title else target.stem
-        )
-        used = {c.tile_id for t in source.tracks for c in t.clips}
-        timeline.metadata[KEY] = {
-            "version": VERSION,
-            "axis": source.axis,
-            "rate": source.rate,
-            "tiles": {tid: encode_tile(source.tile(tid)) for tid in sorted(used)},
-        }
-        for track in source.tracks:
-            media = _media(source, track, target, clock)
-            for lane_index, lane in enumerate(_lanes(track)):
-                out = otio.schema.Track(name=track.name, kind=otio.schema.TrackKind.Audio)
-                out.metadata[KEY] = {
-                    "track": track.id,
-                    "lane": lane_index,
-                    "kind": track.kind,
-                    "name": track.name,
-                    "gain": track.gain,
-                    "mute": track.mute,
-                    "solo": track.solo,
-                }
-                cursor = 0.0
-                for clip in lane:
-                    if clip.start > cursor:
-                        out.append(otio.schema.Gap(duration=clock.span(cursor, clip.start)))
-                    item = otio.schema.Clip(
-                        name=source.tile(clip.tile_id).name,
-                        media_reference=otio.schema.MissingReference(),
-                        source_range=otio.opentime.TimeRange(
-                            clock.at(clip.start if media else clip.source_in),
-                            clock.span(clip.start, clip.end),
-                        ),
-                    )
-                    if media:
-                        item.set_media_references({k: v.clone() for k, v in media.items()}, DEFAULT)
-                    item.metadata[KEY] = {
-                        "tile": clip.tile_id,
-                        "start": clip.start,
-                        **_clip_fields(clip),
-                    }
-                    out.append(item)
-                    cursor = clip.end
-                timeline.tracks.append(out)
-        if clock.frames:  # editorial adapters hang audio on a picture track: an empty one
-            picture = otio.schema.Track(name="Picture", kind=otio.schema.TrackKind.Video)
-            picture.append(otio.schema.Gap(duration=clock.span(0.0, source.duration)))
-            timeline.tracks.insert(0, picture)
+        if target.suffix.lower() == ".otioz":
+            with MediaStore.bundled() as store:
+                timeline = _timeline(source, target, store, clock)
+                write_bundle(timeline, store, path)
+            return
+        timeline = _timeline(source, target, MediaStore(target.parent), clock)
         otio.adapters.write_to_file(timeline, str(path), adapter_name="otio_json")
 
     def read(
@@ -231,16 +242,10 @@ class OtioFormat:
 def _read(path: Path) -> Imported:
     """The tracks and clips of an OTIO file (run in a child process by OtioFormat.read): ours
     exactly, a video editor's as context (importers.otio_context)."""
-    try:
-        timeline = otio.adapters.read_from_file(str(path), adapter_name="otio_json")
-    except Exception as exc:  # OTIO's parser raises many types on malformed input
-        detail = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
-        raise FormatError(f"{path.name} is not a readable OTIO file ({detail})") from None
-    if not isinstance(timeline, otio.schema.Timeline):
-        raise FormatError(f"{path.name} holds no OTIO timeline")
-    meta = timeline.metadata.get(KEY)
-    if meta is None or "tiles" not in meta:
-        return read_context(timeline, path)
+    with opened(path) as (timeline, folder):
+        meta = timeline.metadata.get(KEY)
+        if meta is None or "tiles" not in meta:
+            return read_context(timeline, path, folder)
     tiles = {str(k): decode_tile(v) for k, v in dict(meta["tiles"]).items()}
     axis = meta.get("axis", "time")
     placements: list[Placement] = []

@@ -194,10 +194,13 @@ def _tracks(timeline: otio.schema.Timeline, kind: str) -> list[otio.schema.Track
     return [t for t in timeline.tracks if isinstance(t, otio.schema.Track) and t.kind == kind]
 
 
-def read_context(timeline: otio.schema.Timeline, path: Path) -> Imported:
-    """A foreign timeline's sound, markers and cuts (FormatError when it has none of them)."""
+def read_context(
+    timeline: otio.schema.Timeline, path: Path, folder: Path | None = None
+) -> Imported:
+    """A foreign timeline's sound, markers and cuts (FormatError when it has none of them);
+    relative media resolve against `folder` (default: the file's own)."""
     notes: list[str] = []
-    media = _Media(path.parent)
+    media = _Media(path.parent if folder is None else folder)
     placements, infos = _placements(timeline, media, notes)
     markers = _markers(timeline)
     cuts = _cuts(timeline)

@@ -9,6 +9,7 @@ import opentimelineio as otio
 import pytest
 import soundfile as sf
 
+from importers.otio import _read
 from importers.otio_context import read_context
 from timeline import edits
 from timeline.files import importing
@@ -58,7 +59,7 @@ def _edit(folder):
 def test_a_cut_imports_as_sound_and_markers_aligned(tmp_path, monkeypatch):
     path = _edit(tmp_path)
     monkeypatch.chdir(tmp_path)  # relative media resolve against the .otio, not here
-    project, _ = importing.import_file(edits.new_project(templates=False), path)
+    project, _ = importing.place(edits.new_project(templates=False), _read(path))
     assert [(t.name, t.kind, t.mute) for t in project.tracks] == [
         ("Dialogue", "audio", False),
         ("Music", "audio", False),
