@@ -1,14 +1,16 @@
-"""OpenTimelineIO (.otio): each track and clip with its timing, beside video and audio.
+"""OpenTimelineIO (.otio, .otioz): each track and clip with its timing, beside video and audio.
 
 The timeline is named after the project (its title, else the file's name). Each project track
 becomes one OTIO Audio track, or several ("lanes") when its clips overlap, since OTIO tracks play
-clips one after another. On the time axis each track is also rendered beside the .otio file as
-`<name>-<track>.wav` (float, at the project's rate) and, for a drive track, `<name>-<track>.haptic`;
-every clip points at them with ExternalReferences (the WAV as its default media, the .haptic as
-a second reference named "haptic"), its source range being its span on the timeline. Our exact
-clip fields, track settings and tiles (sampled data base64-encoded) are kept in
-`metadata["haptic_timeline"]`, which is what reading uses. Only files this program wrote can be
-read back: other OTIO files carry no haptic tiles.
+clips one after another. On the time axis each track is also rendered as `<name>-<track>.wav`
+(float, at the project's rate) and, for a drive track, `<name>-<track>.haptic`, beside the .otio
+or inside the .otioz bundle (importers.otio_bundle); every clip points at them with
+ExternalReferences (the WAV as its default media, the .haptic as a second reference named
+"haptic"), its source range being its span on the timeline, exact at the project's rate or in
+whole frames at a video rate (importers.otio_time). Our exact clip fields, track settings and
+tiles (sampled data base64-encoded) are kept in `metadata["haptic_timeline"]`, which is what
+reading our files uses (strictly: importers.otio_fields). A video editor's timeline has no such
+metadata and imports as context: its sound, markers and cuts (importers.otio_context).
 """
 
 from __future__ import annotations
@@ -203,7 +205,8 @@ def _timeline(
 
 
 class OtioFormat:
-    """OpenTimelineIO: writes every track and clip; reads back files this program wrote."""
+    """OpenTimelineIO: writes every track and clip; reads back files this program wrote, and a
+    video editor's timeline as context."""
 
     name = "otio"
     extensions = (".otio", ".otioz")

@@ -15,6 +15,7 @@ import tempfile
 import zipfile
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import opentimelineio as otio
 
@@ -103,6 +104,29 @@ def _parsed(path: Path, parse) -> otio.schema.Timeline:
     except Exception as exc:  # OTIO's parser raises many types on malformed input
         detail = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
         raise FormatError(f"{path.name} is not a readable OTIO file ({detail})") from None
-    if not isinstance(timeline, otio.schema.Timeline):
+    found = _timeline_in(timeline)
+    if found is None:
         raise FormatError(f"{path.name} holds no OTIO timeline")
-    return timeline
+    return found
+
+
+def _timeline_in(root: Any) -> otio.schema.Timeline | None:
+    """The timeline a file holds: itself, the first in a collection, or a bare stack or track
+    as a timeline of its own (as OTIO's tools save a part of an edit)."""
+    if isinstance(root, otio.schema.Timeline):
+        return root
+    if isinstance(root, otio.schema.SerializableCollection):
+        for child in root:
+            found = _timeline_in(child)
+            if found is not None:
+                return found
+        return None
+    if isinstance(root, otio.schema.Stack):
+        timeline = otio.schema.Timeline(root.name)
+        timeline.tracks = root
+        return timeline
+    if isinstance(root, otio.schema.Track):
+        timeline = otio.schema.Timeline(root.name)
+        timeline.tracks.append(root)
+        return timeline
+    return None

@@ -220,4 +220,6 @@ def read_context(
     if cuts:
         notes.append(f"{len(cuts)} picture cut(s) placed as markers named after their shots")
     found = sorted([*markers, *cuts], key=lambda m: m.at)
-    return Imported(tuple(placements), tuple(infos), tuple(notes), tuple(found))
+    return Imported(
+        tuple(placements), tuple(infos), tuple(notes), tuple((m.name, m.at) for m in found)
+    )

@@ -89,3 +89,20 @@ def test_a_timeline_with_nothing_to_design_against_is_refused(tmp_path):
     timeline.tracks.append(picture)
     with pytest.raises(FormatError, match="e.otio was not written by haptic-timeline and holds no"):
         read_context(timeline, tmp_path / "e.otio")
+
+
+def test_a_picture_only_cut_in_a_collection_imports_its_cuts(tmp_path):
+    """Most of OTIO's sample timelines are picture only (clips with MissingReferences)."""
+    picture = otio.schema.Track("Sequence", kind="Video")
+    for name, frames in (("tech.mp4", 720), ("out-b.mp4", 722)):
+        picture.append(
+            otio.schema.Clip(name, otio.schema.MissingReference(), TR(RT(0, 24), RT(frames, 24)))
+        )
+        picture.append(otio.schema.Gap(duration=RT(84, 24)))
+    timeline = otio.schema.Timeline("NestedScope")
+    timeline.tracks.append(picture)
+    collection = otio.schema.SerializableCollection("reel", [timeline])
+    otio.adapters.write_to_file(collection, str(tmp_path / "reel.otio"))
+    imported = _read(tmp_path / "reel.otio")
+    assert imported.placements == ()
+    assert imported.markers == (("tech.mp4", 0.0), ("out-b.mp4", 33.5))  # 720 + 84 frames

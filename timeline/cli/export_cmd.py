@@ -28,7 +28,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         type=positive,
         default=None,
         metavar="R",
-        help="sample rate of the written layers (default: the project's)",
+        help="sample rate of the written layers (default: the project's); for .otio and .otioz "
+        "the edit's frame rate (24, 25, 30, 23.976, ...), for video editors' tools",
     )
     p.add_argument(
         "--fixed-point",
@@ -41,12 +42,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from timeline.files.exporting import export_project
     from timeline.files.projectfile import load
+    from timeline.plugins.file_formats import writer_for
     from timeline.rendering.aliasing import aliasing_notes
 
     project = load(args.project)
     options: dict[str, Any] = {"fixed_point": True} if args.fixed_point else {}
     export_project(project, args.output, rate=args.rate, **options)
-    for note in aliasing_notes(project, args.rate):
+    frames = writer_for(args.output).name == "otio"  # a frame rate: nothing is resampled
+    for note in [] if frames else aliasing_notes(project, args.rate):
         print(f"haptic-timeline: warning: {note}", file=sys.stderr)
     print(f"exported {args.project} -> {args.output}", file=sys.stderr)
     return 0

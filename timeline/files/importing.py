@@ -122,7 +122,7 @@ def place(
         batch.append((target, tile, at + placement.start, fields))
     project = _place_batch(project, batch, tile_ids, clip_ids)
     if imported.markers:
-        moved = tuple(Marker(m.name, at + m.at) for m in imported.markers)
+        moved = tuple(Marker(name, at + position) for name, position in imported.markers)
         project = marker_edits.add_markers(project, moved)
     return project, clip_ids
 

@@ -20,7 +20,6 @@ import numpy as np
 
 from timeline import plugins
 from timeline.errors import FormatError
-from timeline.model.markers import Marker
 from timeline.tiles import Tile
 
 Progress = Callable[[float], None]  # called with the fraction done, 0.0 .. 1.0
@@ -60,7 +59,7 @@ class Imported:
     placements: tuple[Placement, ...]
     tracks: tuple[TrackInfo, ...] = ()
     notes: tuple[str, ...] = ()  # what was approximated or dropped, for the message bar
-    markers: tuple[Marker, ...] = ()  # named places, at positions relative to the import's start
+    markers: tuple[tuple[str, float], ...] = ()  # (name, position after the import's start)
 
 
 @dataclass(frozen=True)
