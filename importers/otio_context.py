@@ -14,6 +14,7 @@ its clips become project markers at their times in the edit. Pictures are left o
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -45,7 +46,9 @@ class _Media:
         return self._silent[key]
 
     def path(self, reference: Any) -> Path | None:
-        """The file a media reference names, relative ones against the .otio's folder."""
+        """The file a media reference names: its path (relative ones against the .otio's
+        folder), else a file of the same name in that folder or its media/ (where a cut sent
+        with its media keeps them; the editor's own path, D:/media/..., is elsewhere)."""
         url = getattr(reference, "target_url", None)
         if not isinstance(url, str) or not url.strip():
             return None
@@ -55,15 +58,22 @@ class _Media:
             if url.startswith("file:"):
                 url = otio.url_utils.filepath_from_url(url)
             path = Path(url)
-            # one key per file, however it is named
-            return (path if path.is_absolute() else self.folder / path).resolve()
+            name = re.split(r"[\\/]", url)[-1]
+            for candidate in (
+                path if path.is_absolute() else self.folder / path,
+                self.folder / name,
+                self.folder / "media" / name,
+            ):
+                if candidate.is_file():
+                    return candidate.resolve()  # one key per file, however it is named
         except (OSError, RuntimeError, ValueError):  # a link loop, a NUL in the name
-            return None
+            pass
+        return None
 
     def tile(self, clip: otio.schema.Clip) -> Tile | None:
         path = self.path(clip.media_reference)
         if path is None:
-            self.missing.append(clip.name or "an unnamed clip")
+            self.missing.append(_url_name(clip))
             return None
         if path not in self.tiles:
             self.tiles[path] = _sound(path)
@@ -72,11 +82,18 @@ class _Media:
         return self.tiles[path]
 
 
+def _url_name(clip: otio.schema.Clip) -> str:
+    url = getattr(clip.media_reference, "target_url", None)
+    if isinstance(url, str) and url.strip():
+        return re.split(r"[\\/]", url.rstrip("/\\"))[-1] or url
+    return clip.name or "an unnamed clip"
+
+
 def _sound(path: Path) -> Tile | None:
     """The sound in a file, or None when it is missing or not a sound file."""
     fmt = all_formats().get("audio")
     try:
-        if fmt is None or path.suffix.lower() not in fmt.extensions or not path.is_file():
+        if fmt is None or path.suffix.lower() not in fmt.extensions:
             return None
         result = fmt.read(path)
     except (HapticTimelineError, OSError, ValueError):

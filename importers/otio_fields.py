@@ -101,11 +101,11 @@ def clip_fields(meta: Any, name: str) -> dict[str, Any]:
 
 
 def start(meta: Any, name: str, axis: str) -> float:
-    """A clip's start; on the time axis never before 0, where it would never play."""
+    """A clip's start; never before 0 (where it would never play) but on the position axis."""
     at = number(
         _field(meta, "start", f"a clip's haptic settings in {name}"), f"a clip's start in {name}"
     )
-    if axis == "time" and at < 0:
+    if axis != "position" and at < 0:
         raise FormatError(
             f"a clip in {name} starts at {at:g} s, before the timeline's start at 0, where it "
             "would never play"

@@ -20,8 +20,8 @@ HOUR = 86400  # 01:00:00:00 at 24 fps: where the editor's media timecode starts
 
 
 def _edit(folder):
-    """A cut: picture, a dialogue track (one clip plain, one in a nested stack) and a music track
-    whose medium is on the editor's machine only."""
+    """A cut: picture, a dialogue track (one clip plain, one in a nested stack naming its medium
+    by the editor's path) and a music track whose medium is on the editor's machine only."""
     rate = 8000
     (folder / "media").mkdir()
     sf.write(folder / "media" / "door.wav", np.arange(2 * rate) / (2.0 * rate), rate, "FLOAT")
@@ -40,8 +40,8 @@ def _edit(folder):
     nested = otio.schema.Stack("nest")
     inner = otio.schema.Track("inner", kind="Audio")
     inner.append(otio.schema.Gap(duration=RT(12, 24)))
-    absolute = otio.url_utils.url_from_filepath(str(folder / "media" / "door.wav"))
-    again = otio.schema.ExternalReference(absolute, TR(RT(HOUR, 24), RT(48, 24)))
+    editors = "file://localhost/D%3a/media/door.wav"  # found by name in the .otio's media/
+    again = otio.schema.ExternalReference(editors, TR(RT(HOUR, 24), RT(48, 24)))
     inner.append(otio.schema.Clip("door again", again, TR(RT(HOUR, 24), RT(12, 24))))
     nested.append(inner)
     dialogue.append(nested)
@@ -59,7 +59,9 @@ def _edit(folder):
 def test_a_cut_imports_as_sound_and_markers_aligned(tmp_path, monkeypatch):
     path = _edit(tmp_path)
     monkeypatch.chdir(tmp_path)  # relative media resolve against the .otio, not here
-    project, _ = importing.place(edits.new_project(templates=False), _read(path))
+    imported = _read(path)
+    notes = imported.notes
+    project, _ = importing.place(edits.new_project(templates=False), imported)
     assert [(t.name, t.kind, t.mute) for t in project.tracks] == [
         ("Dialogue", "audio", False),
         ("Music", "audio", False),
@@ -74,6 +76,11 @@ def test_a_cut_imports_as_sound_and_markers_aligned(tmp_path, monkeypatch):
     (score,) = project.tracks[1].clips
     assert (score.start, score.duration) == (0.0, 3.0)
     assert project.tile(score.tile_id).name == "score"  # silent, its span kept
+    assert notes == (
+        "1 audio clip(s) placed silent: their media were not found or are not sound files "
+        "(score.wav)",
+        "1 picture cut(s) placed as markers named after their shots",
+    )
     assert [(m.at, m.name) for m in project.markers] == [
         (0.5, "sh010.mov"),  # the shot's cut
         (1.25, "latch"),  # a clip's marker, a quarter second into the door clip
