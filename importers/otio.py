@@ -242,14 +242,24 @@ class OtioFormat:
         return imported
 
 
+def _ours(timeline: otio.schema.Timeline) -> bool:
+    """Whether this program wrote the timeline (its metadata holds our tiles)."""
+    meta = timeline.metadata.get(KEY)
+    return meta is not None and "tiles" in meta
+
+
 def _read(path: Path) -> Imported:
     """The tracks and clips of an OTIO file (run in a child process by OtioFormat.read): ours
     exactly, a video editor's as context (importers.otio_context)."""
-    with opened(path) as (timeline, folder):
+    with opened(path, wants_media=lambda timeline: not _ours(timeline)) as (timeline, folder):
         meta = timeline.metadata.get(KEY)
-        if meta is None or "tiles" not in meta:
+        if not _ours(timeline):
             return read_context(timeline, path, folder)
-    tiles = {str(k): decode_tile(v) for k, v in dict(meta["tiles"]).items()}
+    try:
+        encoded = dict(meta["tiles"])
+    except (TypeError, ValueError):
+        raise FormatError(f"the tiles in {path.name} are not a table of tiles") from None
+    tiles = {str(k): decode_tile(v) for k, v in encoded.items()}
     axis = meta.get("axis", "time")
     placements: list[Placement] = []
     infos: dict[str, TrackInfo] = {}

@@ -13,7 +13,7 @@ from __future__ import annotations
 import contextlib
 import tempfile
 import zipfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -63,9 +63,11 @@ def write_bundle(timeline: otio.schema.Timeline, store: MediaStore, path: Path) 
 
 
 @contextlib.contextmanager
-def opened(path: Path) -> Iterator[tuple[otio.schema.Timeline, Path]]:
+def opened(
+    path: Path, wants_media: Callable[[otio.schema.Timeline], bool]
+) -> Iterator[tuple[otio.schema.Timeline, Path]]:
     """An .otio's timeline and the folder its relative media resolve against; for an .otioz,
-    its content and a temporary folder holding its unpacked media."""
+    its content and a temporary folder holding its unpacked media when `wants_media(timeline)`."""
     if path.suffix.lower() != ".otioz":
         yield (
             _parsed(path, lambda: otio.adapters.read_from_file(str(path), "otio_json")),
@@ -84,7 +86,8 @@ def opened(path: Path) -> Iterator[tuple[otio.schema.Timeline, Path]]:
         except (zipfile.BadZipFile, UnicodeDecodeError, OSError) as exc:
             raise FormatError(f"{path.name}'s {CONTENT} cannot be read ({exc})") from None
         timeline = _parsed(path, lambda: otio.adapters.read_from_string(text, "otio_json"))
-        media = [i for i in bundle.infolist() if i.filename.startswith(MEDIA + "/")]
+        wanted = wants_media(timeline)
+        media = [i for i in bundle.infolist() if wanted and i.filename.startswith(MEDIA + "/")]
         if sum(i.file_size for i in media) > MAX_UNPACKED:
             raise FormatError(
                 f"{path.name}'s media unpack to more than {MAX_UNPACKED >> 30} GiB; unzip it "
