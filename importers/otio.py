@@ -28,10 +28,11 @@ from importers import otio_fields
 from importers.otio_bundle import MediaStore, opened, write_bundle
 from importers.otio_context import read_context
 from importers.otio_time import Clock, video_rate
-from timeline.errors import HapticTimelineError
+from timeline.errors import EditError, HapticTimelineError
 from timeline.files import crash_isolation, exporting
 from timeline.model import Clip, Project, Track
 from timeline.plugins.file_formats import FormatError, Imported, Placement, Progress, TrackInfo
+from timeline.signal.render_presets import preset
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.tiles.vibration_tile import VibrationTile
 
@@ -75,6 +76,8 @@ def decode_tile(data: Any) -> Tile:
     """The tile encoded by encode_tile, or a FormatError."""
     try:
         kind = data["type"]
+        if not isinstance(data.get("name", ""), str):
+            raise EditError(f"a tile's name must be text, not {data['name']!r}")
         if kind == "sampled":
             raw = base64.b64decode(data["samples"], validate=True)
             samples = np.frombuffer(raw, dtype="<f8")
@@ -242,6 +245,24 @@ class OtioFormat:
         return imported
 
 
+def _renderable(tile: Tile, rate: float, name: str) -> Tile:
+    """The tile, once its first samples at the design's rate render as finite numbers: a tile
+    that cannot render would make every later render, play, export and check of the project
+    fail, so it is refused here instead."""
+    try:
+        with np.errstate(all="ignore"):
+            probe = tile.render(0.0, 1.0 / rate, 16, preset("normal"))
+        ok = bool(np.all(np.isfinite(probe)))
+    except (ArithmeticError, ValueError, MemoryError, HapticTimelineError) as exc:
+        raise FormatError(
+            f"tile {tile.name!r} in {name} cannot be rendered ({type(exc).__name__}): its "
+            "parameters have no meaning"
+        ) from None
+    if not ok:
+        raise FormatError(f"tile {tile.name!r} in {name} renders to values that are not numbers")
+    return tile
+
+
 def _ours(timeline: otio.schema.Timeline) -> bool:
     """Whether this program wrote the timeline (its metadata holds our tiles)."""
     meta = timeline.metadata.get(KEY)
@@ -259,7 +280,8 @@ def _read(path: Path) -> Imported:
         encoded = dict(meta["tiles"])
     except (TypeError, ValueError):
         raise FormatError(f"the tiles in {path.name} are not a table of tiles") from None
-    tiles = {str(k): decode_tile(v) for k, v in encoded.items()}
+    rate = otio_fields.number(meta.get("rate"), f"the rate in {path.name}")
+    tiles = {str(k): _renderable(decode_tile(v), rate, path.name) for k, v in encoded.items()}
     axis = meta.get("axis", "time")
     placements: list[Placement] = []
     infos: dict[str, TrackInfo] = {}

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import base64
 import copy
 import json
 
+import numpy as np
 import pytest
 
 from importers.otio import _read
@@ -86,3 +88,11 @@ def test_a_refused_import_leaves_the_project_as_it_was(tmp_path, exported):
     with pytest.raises(FormatError, match="exponential chirp's f0 must be above 0"):
         importing.import_into_project_file(_write(tmp_path, exported, tile=chirp), project)
     assert project.read_bytes() == before
+
+
+def test_a_tile_that_cannot_render_is_refused(tmp_path, exported):
+    """Ten samples at 1e-300 Hz: accepted, every render of the project would fail after it."""
+    samples = base64.b64encode(np.ones(10, dtype="<f8").tobytes()).decode("ascii")
+    tiny = {"type": "sampled", "rate": 1e-300, "name": "slow", "samples": samples}
+    with pytest.raises(FormatError, match="tile 'slow' in f.otio cannot be rendered"):
+        _read(_write(tmp_path, exported, tile=tiny))
