@@ -1,14 +1,16 @@
 """A video editor's OTIO timeline as context: its sound on audio tracks and its markers, aligned.
 
 A cut from Premiere, Resolve or any OTIO tool carries no haptics; what a designer needs from it
-is where things happen. Each enabled audio track becomes an audio (context) track, heard and
-seen beside the haptics but never felt; each of its clips is placed at its time in the edit
-(clips inside nested stacks too) and plays its part of the medium: the clip's source range less
-the medium's own start (media often start at a timecode such as 01:00:00:00). Media are found
-from `target_url`: a file URL, an absolute path, or a path relative to the .otio's folder. A
-medium that is missing or not a sound file libsndfile reads becomes a silent clip of the same
-span and name, with a note, so the edit's shape stays. Markers of the timeline, its tracks and
-its clips become project markers at their times in the edit. Pictures are left out (noted).
+is where things happen. Each audio track becomes an audio (context) track (a disabled one muted),
+heard and seen beside the haptics but never felt; each enabled clip is placed at its time in the
+edit (clips inside nested stacks too), cut to its track's trimmed range, and plays its part of
+the medium: the clip's source range less the medium's own start (media often start at a
+timecode such as 01:00:00:00). Media are found from `target_url` (a file URL, an absolute path,
+or a path relative to the .otio's folder), else by name in that folder or its media/. A medium
+found nowhere, or not a sound file libsndfile reads, becomes a silent clip of the same span and
+name, with a note, so the edit's shape stays. Markers of the timeline, its tracks and its clips
+become project markers at their times in the edit, and so does each cut of a picture track
+(named after its shot); pictures themselves are left out.
 """
 
 from __future__ import annotations
@@ -37,6 +39,7 @@ class _Media:
         self.tiles: dict[Path, Tile | None] = {}
         self.missing: list[str] = []
         self._silent: dict[tuple[str, float], Tile] = {}
+        self.disabled = 0  # audio clips switched off in the edit, left out
 
     def silent(self, name: str, length: float) -> Tile:
         """A silent stand-in for a clip whose medium cannot be read (one per name and length)."""
@@ -121,7 +124,7 @@ def _placements(
             continue
         for clip in track.find_clips():
             if not clip.enabled:
-                notes.append(f"audio clip {clip.name!r} is disabled in the edit; left out")
+                media.disabled += 1
                 continue
             placement = _placement(clip, timeline, (key, end), media, notes)
             if placement is not None:
@@ -234,6 +237,8 @@ def read_context(
             f"{len(media.missing)} audio clip(s) placed silent: their media were not found or "
             f"are not sound files ({', '.join(names[:3])}{more})"
         )
+    if media.disabled:
+        notes.append(f"{media.disabled} audio clip(s) disabled in the edit left out")
     if cuts:
         notes.append(f"{len(cuts)} picture cut(s) placed as markers named after their shots")
     found = sorted([*markers, *cuts], key=lambda m: m.at)
