@@ -1,14 +1,16 @@
-"""OpenTimelineIO (.otio): each track and clip with its timing, beside video and audio.
+"""OpenTimelineIO (.otio, .otioz): each track and clip with its timing, beside video and audio.
 
 The timeline is named after the project (its title, else the file's name). Each project track
 becomes one OTIO Audio track, or several ("lanes") when its clips overlap, since OTIO tracks play
-clips one after another. On the time axis each track is also rendered beside the .otio file as
-`<name>-<track>.wav` (float, at the project's rate) and, for a drive track, `<name>-<track>.haptic`;
-every clip points at them with ExternalReferences (the WAV as its default media, the .haptic as
-a second reference named "haptic"), its source range being its span on the timeline. Our exact
-clip fields, track settings and tiles (sampled data base64-encoded) are kept in
-`metadata["haptic_timeline"]`, which is what reading uses. Only files this program wrote can be
-read back: other OTIO files carry no haptic tiles.
+clips one after another. On the time axis each track is also rendered as `<name>-<track>.wav`
+(float, at the project's rate) and, for a drive track, `<name>-<track>.haptic`, beside the .otio
+or inside the .otioz bundle (importers.otio_bundle); every clip points at them with
+ExternalReferences (the WAV as its default media, the .haptic as a second reference named
+"haptic"), its source range being its span on the timeline, exact at the project's rate or in
+whole frames at a video rate (importers.otio_time). Our exact clip fields, track settings and
+tiles (sampled data base64-encoded) are kept in `metadata["haptic_timeline"]`, which is what
+reading our files uses (strictly: importers.otio_fields). A video editor's timeline has no such
+metadata and imports as context: its sound, markers and cuts (importers.otio_context).
 """
 
 from __future__ import annotations
@@ -22,10 +24,15 @@ from typing import Any
 import numpy as np
 import opentimelineio as otio
 
-from timeline.errors import HapticTimelineError
+from importers import otio_fields
+from importers.otio_bundle import MediaStore, opened, write_bundle
+from importers.otio_context import read_context
+from importers.otio_time import Clock, video_rate
+from timeline.errors import EditError, HapticTimelineError
 from timeline.files import crash_isolation, exporting
-from timeline.model import Clip, Fade, Project, Track
+from timeline.model import Clip, Project, Track
 from timeline.plugins.file_formats import FormatError, Imported, Placement, Progress, TrackInfo
+from timeline.signal.render_presets import preset
 from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.tiles.vibration_tile import VibrationTile
 
@@ -69,6 +76,8 @@ def decode_tile(data: Any) -> Tile:
     """The tile encoded by encode_tile, or a FormatError."""
     try:
         kind = data["type"]
+        if not isinstance(data.get("name", ""), str):
+            raise EditError(f"a tile's name must be text, not {data['name']!r}")
         if kind == "sampled":
             raw = base64.b64decode(data["samples"], validate=True)
             samples = np.frombuffer(raw, dtype="<f8")
@@ -112,33 +121,26 @@ def _lanes(track: Track) -> list[list[Clip]]:
     return lanes or [[]]
 
 
-def _rt(seconds: float, rate: float) -> otio.opentime.RationalTime:
-    return otio.opentime.RationalTime(seconds * rate, rate)
-
-
 def _file_part(text: str) -> str:
     return re.sub(r"[^0-9A-Za-z._-]+", "_", text).strip("._") or "track"
 
 
 def _media(
-    project: Project, track: Track, target: Path
+    project: Project, track: Track, stem: str, store: MediaStore, clock: Clock
 ) -> dict[str, otio.schema.ExternalReference]:
-    """Render one track beside the .otio (WAV, and .haptic for drive); references to the files."""
+    """Render one track as a WAV (and a .haptic for drive) into the store; references to them."""
     if project.axis != "time" or not track.clips:
         return {}
     alone = replace(project, tracks=(replace(track, mute=False, solo=False),))
-    stem = f"{target.stem}-{_file_part(track.name)}"
-    available = otio.opentime.TimeRange(_rt(0.0, project.rate), _rt(alone.duration, project.rate))
-    refs = {}
-    wav = target.with_name(stem + ".wav")
+    stem = f"{stem}-{_file_part(track.name)}"
+    available = otio.opentime.TimeRange(clock.at(0.0), clock.whole(alone.duration))
+    wav = store.path(stem + ".wav")
     exporting.write_layers(exporting.project_layers(alone), wav)
-    refs[DEFAULT] = otio.schema.ExternalReference(target_url=wav.name, available_range=available)
+    refs = {DEFAULT: otio.schema.ExternalReference(store.url(wav), available_range=available)}
     if track.kind == "drive":
-        haptic = target.with_name(stem + ".haptic")
+        haptic = store.path(stem + ".haptic")
         exporting.export_project(alone, haptic)
-        refs["haptic"] = otio.schema.ExternalReference(
-            target_url=haptic.name, available_range=available
-        )
+        refs["haptic"] = otio.schema.ExternalReference(store.url(haptic), available_range=available)
     return refs
 
 
@@ -148,66 +150,85 @@ def _clip_fields(clip: Clip) -> dict[str, Any]:
     return out
 
 
+def _timeline(
+    source: Project, target: Path, store: MediaStore, clock: Clock
+) -> otio.schema.Timeline:
+    """The project as an OTIO timeline; its tracks' media rendered into the store."""
+    title = source.metadata.get("title")
+    timeline = otio.schema.Timeline(name=title if isinstance(title, str) and title else target.stem)
+    used = {c.tile_id for t in source.tracks for c in t.clips}
+    timeline.metadata[KEY] = {
+        "version": VERSION,
+        "axis": source.axis,
+        "rate": source.rate,
+        "tiles": {tid: encode_tile(source.tile(tid)) for tid in sorted(used)},
+    }
+    for track in source.tracks:
+        media = _media(source, track, target.stem, store, clock)
+        for lane_index, lane in enumerate(_lanes(track)):
+            out = otio.schema.Track(name=track.name, kind=otio.schema.TrackKind.Audio)
+            out.metadata[KEY] = {
+                "track": track.id,
+                "lane": lane_index,
+                "kind": track.kind,
+                "name": track.name,
+                "gain": track.gain,
+                "mute": track.mute,
+                "solo": track.solo,
+            }
+            cursor = 0.0
+            for clip in lane:
+                if clip.start > cursor:
+                    out.append(otio.schema.Gap(duration=clock.span(cursor, clip.start)))
+                item = otio.schema.Clip(
+                    name=source.tile(clip.tile_id).name,
+                    media_reference=otio.schema.MissingReference(),
+                    source_range=otio.opentime.TimeRange(
+                        clock.at(clip.start if media else clip.source_in),
+                        clock.span(clip.start, clip.end),
+                    ),
+                )
+                if media:
+                    item.set_media_references({k: v.clone() for k, v in media.items()}, DEFAULT)
+                item.metadata[KEY] = {
+                    "tile": clip.tile_id,
+                    "start": clip.start,
+                    **_clip_fields(clip),
+                }
+                out.append(item)
+                cursor = clip.end
+            timeline.tracks.append(out)
+    if clock.frames:  # editorial adapters hang audio on a picture track: an empty one, a frame
+        # longer than the design so that a clip rounded to 0 frames at its end still lies on it
+        picture = otio.schema.Track(name="Picture", kind=otio.schema.TrackKind.Video)
+        length = clock.span(0.0, source.duration) + otio.opentime.RationalTime(1, clock.rate)
+        picture.append(otio.schema.Gap(duration=length))
+        timeline.tracks.insert(0, picture)
+    return timeline
+
+
 class OtioFormat:
-    """OpenTimelineIO: writes every track and clip; reads back files this program wrote."""
+    """OpenTimelineIO: writes every track and clip; reads back files this program wrote, and a
+    video editor's timeline as context."""
 
     name = "otio"
-    extensions = (".otio",)
+    extensions = (".otio", ".otioz")
     reads = "design"
     writes = "project"
     options = ()
 
     def write(self, source: Project, path: Path, **options: Any) -> None:
         """Write the project's tracks as OTIO tracks, with our fields in metadata, and each
-        track's rendered media beside the file."""
-        rate = source.rate
+        track's rendered media beside the file (.otio) or inside the bundle (.otioz)."""
+        asked = options.get("rate")
+        clock = Clock(source.rate, False) if asked is None else Clock(video_rate(asked), True)
         target = Path(options.get("target", path))
-        title = source.metadata.get("title")
-        timeline = otio.schema.Timeline(
-            name=title if isinstance(title, str) and title else target.stem
-        )
-        used = {c.tile_id for t in source.tracks for c in t.clips}
-        timeline.metadata[KEY] = {
-            "version": VERSION,
-            "axis": source.axis,
-            "rate": rate,
-            "tiles": {tid: encode_tile(source.tile(tid)) for tid in sorted(used)},
-        }
-        for track in source.tracks:
-            media = _media(source, track, target)
-            for lane_index, lane in enumerate(_lanes(track)):
-                out = otio.schema.Track(name=track.name, kind=otio.schema.TrackKind.Audio)
-                out.metadata[KEY] = {
-                    "track": track.id,
-                    "lane": lane_index,
-                    "kind": track.kind,
-                    "name": track.name,
-                    "gain": track.gain,
-                    "mute": track.mute,
-                    "solo": track.solo,
-                }
-                cursor = 0.0
-                for clip in lane:
-                    if clip.start > cursor:
-                        out.append(otio.schema.Gap(duration=_rt(clip.start - cursor, rate)))
-                    item = otio.schema.Clip(
-                        name=source.tile(clip.tile_id).name,
-                        media_reference=otio.schema.MissingReference(),
-                        source_range=otio.opentime.TimeRange(
-                            _rt(clip.start if media else clip.source_in, rate),
-                            _rt(clip.duration, rate),
-                        ),
-                    )
-                    if media:
-                        item.set_media_references({k: v.clone() for k, v in media.items()}, DEFAULT)
-                    item.metadata[KEY] = {
-                        "tile": clip.tile_id,
-                        "start": clip.start,
-                        **_clip_fields(clip),
-                    }
-                    out.append(item)
-                    cursor = max(cursor, clip.start) + clip.duration
-                timeline.tracks.append(out)
+        if target.suffix.lower() == ".otioz":
+            with MediaStore.bundled() as store:
+                timeline = _timeline(source, target, store, clock)
+                write_bundle(timeline, store, path)
+            return
+        timeline = _timeline(source, target, MediaStore(target.parent), clock)
         otio.adapters.write_to_file(timeline, str(path), adapter_name="otio_json")
 
     def read(
@@ -224,64 +245,75 @@ class OtioFormat:
         return imported
 
 
-def _read(path: Path) -> Imported:
-    """The tracks and clips of an OTIO file (run in a child process by OtioFormat.read)."""
+def _renderable(tile: Tile, rate: float, name: str) -> Tile:
+    """The tile, once its first samples at the design's rate render as finite numbers: a tile
+    that cannot render would make every later render, play, export and check of the project
+    fail, so it is refused here instead."""
     try:
-        timeline = otio.adapters.read_from_file(str(path), adapter_name="otio_json")
-    except Exception as exc:  # OTIO's parser raises many types on malformed input
-        detail = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
-        raise FormatError(f"{path.name} is not a readable OTIO file ({detail})") from None
-    if not isinstance(timeline, otio.schema.Timeline):
-        raise FormatError(f"{path.name} holds no OTIO timeline")
+        with np.errstate(all="ignore"):
+            probe = tile.render(0.0, 1.0 / rate, 16, preset("normal"))
+        ok = bool(np.all(np.isfinite(probe)))
+    except (ArithmeticError, ValueError, MemoryError, HapticTimelineError) as exc:
+        raise FormatError(
+            f"tile {tile.name!r} in {name} cannot be rendered ({type(exc).__name__}): its "
+            "parameters have no meaning"
+        ) from None
+    if not ok:
+        raise FormatError(f"tile {tile.name!r} in {name} renders to values that are not numbers")
+    return tile
+
+
+def _ours(timeline: otio.schema.Timeline) -> bool:
+    """Whether this program wrote the timeline (its metadata holds our tiles)."""
     meta = timeline.metadata.get(KEY)
-    if meta is None or "tiles" not in meta:
-        raise FormatError(f"{path.name} was not written by haptic-timeline (no haptic tiles)")
-    tiles = {str(k): decode_tile(v) for k, v in dict(meta["tiles"]).items()}
+    return meta is not None and "tiles" in meta
+
+
+def _read(path: Path) -> Imported:
+    """The tracks and clips of an OTIO file (run in a child process by OtioFormat.read): ours
+    exactly, a video editor's as context (importers.otio_context)."""
+    with opened(path, wants_media=lambda timeline: not _ours(timeline)) as (timeline, folder):
+        meta = timeline.metadata.get(KEY)
+        if not _ours(timeline):
+            return read_context(timeline, path, folder)
+    try:
+        encoded = dict(meta["tiles"])
+    except (TypeError, ValueError):
+        raise FormatError(f"the tiles in {path.name} are not a table of tiles") from None
+    rate = otio_fields.number(meta.get("rate"), f"the rate in {path.name}")
+    tiles = {str(k): _renderable(decode_tile(v), rate, path.name) for k, v in encoded.items()}
+    axis = meta.get("axis", "time")
     placements: list[Placement] = []
     infos: dict[str, TrackInfo] = {}
     for track in timeline.tracks:
         tmeta = track.metadata.get(KEY)
         if tmeta is None:
             continue
-        track_key, info = _track_info(tmeta, path.name)
-        infos.setdefault(track_key, info)
+        info = otio_fields.track_info(tmeta, path.name)
+        infos.setdefault(info.key, info)
         for item in track:
             cmeta = item.metadata.get(KEY) if isinstance(item, otio.schema.Clip) else None
             if cmeta is not None:
-                placements.append(_placement(cmeta, tiles, track_key, info.kind, path.name))
+                placements.append(_placement(cmeta, tiles, info, axis, path.name))
     if not placements:
         raise FormatError(f"{path.name} holds no haptic clips")
     return Imported(tuple(placements), tuple(infos.values()))
 
 
-def _track_info(meta: Any, name: str) -> tuple[str, TrackInfo]:
-    try:
-        key = str(meta["track"])
-        info = TrackInfo(
-            key,
-            str(meta["name"]),
-            str(meta["kind"]),
-            float(meta["gain"]),
-            bool(meta["mute"]),
-            bool(meta["solo"]),
-        )
-        return key, info
-    except (KeyError, TypeError, ValueError):
-        raise FormatError(f"a track's haptic settings in {name} are malformed") from None
-
-
-def _placement(meta: Any, tiles: dict[str, Tile], track: str, kind: str, name: str) -> Placement:
+def _placement(
+    meta: Any, tiles: dict[str, Tile], track: TrackInfo, axis: str, name: str
+) -> Placement:
     try:
         tile = tiles[str(meta["tile"])]
-        clip = {k: meta[k] for k in _CLIP_FIELDS}
-        clip["fade_in"] = Fade(**dict(clip["fade_in"]))
-        clip["fade_out"] = Fade(**dict(clip["fade_out"]))
-        clip["reverse"] = bool(clip["reverse"])
-        return Placement(tile, float(meta["start"]), kind, track, clip)
+    except (KeyError, TypeError):
+        raise FormatError(f"a clip in {name} names a tile the file does not hold") from None
+    fields = otio_fields.clip_fields(meta, name)
+    start = otio_fields.start(meta, name, axis)
+    try:
+        Clip("check", "check", start, **fields)  # the clip's own rules, before any project sees it
     except HapticTimelineError as exc:
         raise FormatError(f"a clip in {name} is invalid: {exc}") from None
-    except (KeyError, TypeError, ValueError):
-        raise FormatError(f"a clip's haptic settings in {name} are malformed") from None
+    return Placement(tile, start, track.kind, track.key, fields)
 
 
 FORMAT = OtioFormat()

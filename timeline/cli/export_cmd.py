@@ -35,7 +35,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default=None,
         metavar="R",
         help="sample rate of the written layers: samples per second, or per radian on a "
-        "position project; 1/deg also (default: the project's)",
+        "position project; 1/deg also (default: the project's); for .otio and .otioz the "
+        "edit's frame rate (24, 25, 30, 23.976, ...), for video editors' tools",
     )
     p.add_argument(
         "--fixed-point",
@@ -48,6 +49,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from timeline.files.exporting import export_project
     from timeline.files.projectfile import load
+    from timeline.plugins.file_formats import writer_for
     from timeline.rendering.aliasing import aliasing_notes
 
     suffix = Path(args.output).suffix.lower()
@@ -66,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
     rate = None if args.rate is None else rate_on_axis(args.rate, project.axis)
     options: dict[str, Any] = {"fixed_point": True} if args.fixed_point else {}
     export_project(project, args.output, rate=rate, **options)
-    for note in aliasing_notes(project, rate):
+    frames = writer_for(args.output).name == "otio"  # a frame rate: nothing is resampled
+    for note in [] if frames else aliasing_notes(project, rate):
         print(f"haptic-timeline: warning: {note}", file=sys.stderr)
     print(f"exported {args.project} -> {args.output}", file=sys.stderr)
     return 0

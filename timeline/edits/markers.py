@@ -29,6 +29,11 @@ def add_marker(project: Project, at: float, name: str | None = None) -> tuple[Pr
     return replace(project, markers=markers), markers.index(marker)
 
 
+def add_markers(project: Project, markers: tuple[Marker, ...]) -> Project:
+    """Add named markers at once (an import's), kept sorted with the project's own."""
+    return replace(project, markers=_sorted((*project.markers, *markers)))
+
+
 def move_marker(project: Project, index: int, at: float) -> Project:
     """Move the marker at an index to another place."""
     marker = _marker(project, index)

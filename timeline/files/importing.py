@@ -12,9 +12,11 @@ from pathlib import Path
 from typing import Any, Protocol
 
 from timeline import edits
+from timeline.edits import markers as marker_edits
 from timeline.errors import EditError, FormatError, HapticTimelineError
 from timeline.files import gc_pause
 from timeline.model import Project
+from timeline.model.markers import Marker
 from timeline.plugins.file_formats import (
     Imported,
     Progress,
@@ -131,7 +133,11 @@ def place(
         fields["gain"] = gain * fields.get("gain", 1.0)
         tile = tile_ids.get(id(placement.tile), placement.tile)
         batch.append((target, tile, at + placement.start, fields))
-    return _place_batch(project, batch, tile_ids, clip_ids), clip_ids
+    project = _place_batch(project, batch, tile_ids, clip_ids)
+    if imported.markers:
+        moved = tuple(Marker(name, at + position) for name, position in imported.markers)
+        project = marker_edits.add_markers(project, moved)
+    return project, clip_ids
 
 
 def _place_batch(

@@ -59,6 +59,7 @@ class Imported:
     placements: tuple[Placement, ...]
     tracks: tuple[TrackInfo, ...] = ()
     notes: tuple[str, ...] = ()  # what was approximated or dropped, for the message bar
+    markers: tuple[tuple[str, float], ...] = ()  # (name, position after the import's start)
 
 
 @dataclass(frozen=True)
