@@ -212,12 +212,13 @@ def _refuse_long_pattern(text: str, name: str) -> None:
 
     def dropped(pairs: list[tuple[str, Any]]) -> None:
         for key, value in pairs:
-            if key == "ParameterCurveControlPoints" and isinstance(value, list):
+            if value.__class__ is list and key == "ParameterCurveControlPoints":
                 points[0] += len(value)
-        last[0] = dict(pairs).get("Pattern")  # the document itself is the last object read
+        last[0] = pairs  # the document itself is the last object read
 
     vib.parse_json(text, name, "AHAP", object_pairs_hook=dropped)
-    entries = len(last[0]) if isinstance(last[0], list) else 0
+    pattern = [v for k, v in last[0] or () if k == "Pattern"]
+    entries = len(pattern[-1]) if pattern and isinstance(pattern[-1], list) else 0
     if entries + points[0] > MAX_EVENTS:
         raise _too_many(entries, points[0], name)
 

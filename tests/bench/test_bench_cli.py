@@ -15,7 +15,7 @@ PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_s
 TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
           "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency",
           "Scale: full render", "Scale: building through edits", "Scale: project save",
-          "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:",
+          "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:", "AHAP reader:",
           "Square, saw and triangle waves", "Drag a design with its emphasis",
           "A 1-minute float32 recording", "compare: wall s",
           "convert of a 16-bit mono WAV")  # fmt: skip
