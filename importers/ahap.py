@@ -56,6 +56,7 @@ DEFAULT_INTENSITY = 1.0
 DEFAULT_SHARPNESS = 0.5
 DUCKING = 0.8  # Meta's converter: intensity control x 0.8 at a point that carries an emphasis
 READ_TOLERANCE = 0.005  # amplitude: design vs the player's curve
+GRID = 64  # samples per interval between knots where the read curve bends
 MAX_LEVELS = 64  # distinct event sharpness values whose clamping points are found exactly
 SAME_TIME = 1e-9  # s: a control point this close to a transient is at it (curve times are relative)
 CREATED = "haptic-timeline"
@@ -317,13 +318,6 @@ def _adsr(local: np.ndarray, e: dict[str, np.ndarray]) -> np.ndarray:
     return np.clip(env, 0.0, 1.0)
 
 
-def _corners(e: dict[str, np.ndarray]) -> np.ndarray:
-    s, d = e["time"], e["duration"]
-    decayed = np.where(e["sustained"], s, s + np.minimum(e["attack"] + e["decay"], d))
-    ends = [s, s + d, s + np.minimum(e["attack"], d), s + np.maximum(d - e["release"], 0.0)]
-    return np.concatenate([*ends, decayed])
-
-
 FIELDS = ("time", "duration", "intensity", "sharpness", "attack", "decay", "release", "sustained")
 
 
@@ -339,14 +333,19 @@ class _Player:
         self._sum: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         self._owner: tuple[np.ndarray, np.ndarray] = (np.zeros(0), np.zeros(0, dtype=np.int64))
 
-    def values(self, u: np.ndarray, left: bool = False) -> tuple[np.ndarray, np.ndarray]:
-        """Intensity and sharpness at times u (just before u where `left`)."""
+    def values(
+        self, u: np.ndarray, left: bool = False, clip: bool = True
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Intensity and sharpness at times u (just before u where `left`), clamped to 0..1 as
+        the player clamps them unless not `clip`."""
         if self.disjoint:
             level, sharp = self._one_at_a_time(u, left)
         else:
             level, sharp = self._overlapping(u, left)
         level = level * self.intensity.at(u, left)
         sharp = sharp + self.sharpness.at(u, left)
+        if not clip:
+            return level, sharp
         return np.clip(level, 0.0, 1.0), np.clip(sharp, 0.0, 1.0)
 
     @staticmethod
@@ -451,10 +450,37 @@ def _clip_crossings(player: _Player) -> np.ndarray:
 
 
 def _knots(player: _Player, controls) -> np.ndarray:
-    times = [_corners(player.e), _clip_crossings(player)]
+    corners = player.e["time"][:, None] + _envelope_table(player.e)[0]
+    times = [corners.ravel(), _clip_crossings(player)]
     times += [np.array([t for t, _ in pts]) for _, _, pts in controls]
     knots = np.unique(np.concatenate(times))
-    return knots[(knots >= player.e["time"].min()) & (knots <= player.end.max())]
+    knots = knots[(knots >= player.e["time"].min()) & (knots <= player.end.max())]
+    if player.disjoint:
+        return knots
+    return np.unique(np.concatenate([knots, _level_crossings(player, knots)]))
+
+
+def _level_crossings(player: _Player, knots: np.ndarray) -> np.ndarray:
+    """Where overlapping events' summed intensity x control crosses 1 (the player clamps it
+    there): between knots both factors are straight, so their product meets 1 at a root of a
+    quadratic."""
+    if len(knots) < 2:
+        return knots[:0]
+    la = player.values(knots[:-1], clip=False)[0]
+    lb = player.values(knots[1:], left=True, clip=False)[0]
+    ca = player.intensity.at(knots[:-1])
+    cb = player.intensity.at(knots[1:], left=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ea, eb = la / np.where(ca > 0, ca, 1.0), lb / np.where(cb > 0, cb, 1.0)
+        a, b, c = (eb - ea) * (cb - ca), ea * (cb - ca) + ca * (eb - ea), ea * ca - 1.0
+        root = np.sqrt(np.maximum(b * b - 4 * a * c, 0.0))
+        found = []
+        for tau in ((-b + root) / (2 * a), (-b - root) / (2 * a), -c / b):
+            found.append(np.where(np.isfinite(tau) & (tau > 0) & (tau < 1), tau, np.nan))
+    taus = np.stack(found)
+    crossing = (la - 1.0) * (lb - 1.0) < 0
+    times = knots[:-1] + taus * np.diff(knots)
+    return times[:, crossing][np.isfinite(times[:, crossing])]
 
 
 def _stepped(knots: np.ndarray, player: _Player, which: int) -> tuple[np.ndarray, np.ndarray]:
@@ -480,12 +506,19 @@ def _squared(knots: np.ndarray, player: _Player, which: int, tolerance: float):
     mid = 0.5 * (knots[:-1] + knots[1:])
     chord = 0.5 * (player.values(knots)[which][:-1] + player.values(knots, left=True)[which][1:])
     if not np.any(np.abs(player.values(mid)[which] - chord) > 1e-9):
-        return tt, vv
+        if player.disjoint:
+            return tt, vv
+        # overlapping events leave many knots on straight stretches (a sum clamped at 1)
+        points = simplify(tt, vv, 1e-9)
+        return np.array([p[0] for p in points]), np.array([p[1] for p in points])
     # Overlapping events or an envelope times a control bend the curve between knots: add the
     # squared curve's own samples and reduce them within the tolerance.
-    u = np.linspace(knots[0], knots[-1], 64 * len(knots))
-    grid = np.concatenate([tt, u])
-    values = np.concatenate([vv, player.values(u)[which] ** 2])
+    # (the knots' own values are exact, both sides of a step; points between knots from the
+    # straight-root assumption are not, so they are left out)
+    inner = np.arange(1, GRID) / GRID  # GRID samples in every interval between knots
+    u = (knots[:-1, None] + np.diff(knots)[:, None] * inner[None, :]).ravel()
+    grid = np.concatenate([t, u])
+    values = np.concatenate([r * r, player.values(u)[which] ** 2])
     order = np.argsort(grid, kind="stable")
     points = simplify(grid[order], values[order], tolerance)
     return np.array([p[0] for p in points]), np.array([p[1] for p in points])

@@ -12,6 +12,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from importers.ahap import READ_TOLERANCE, read_design
 from importers.ahap_playback import playback
 from importers.ahap_writer import design_pattern
 from timeline import edits
@@ -263,3 +264,41 @@ def test_every_corpus_export_plays_its_design(corpus: Path, tmp_path: Path) -> N
         assert amplitude <= PLAYBACK_BOUND and frequency <= PLAYBACK_BOUND, path.name
         checked += 1
     assert checked >= 60
+
+
+overlapping = st.lists(
+    st.tuples(
+        st.floats(0.0, 2.0).map(lambda t: round(t, 3)),
+        st.floats(0.05, 2.0).map(lambda t: round(t, 3)),
+        st.floats(0.0, 1.0).map(lambda v: round(v, 3)),
+        st.floats(0.0, 0.3).map(lambda t: round(t, 3)),
+        st.floats(0.0, 0.3).map(lambda t: round(t, 3)),
+        st.booleans(),
+    ),
+    min_size=2,
+    max_size=12,
+)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(overlapping)
+def test_overlapping_events_read_as_they_play(tmp_path_factory, events) -> None:
+    """The reader's sum of overlapping events (one table, one sweep) is the evaluator's, event
+    by event, within the read tolerance."""
+    pattern = []
+    for time, duration, intensity, attack, release, sustained in events:
+        event = _continuous(time, duration, intensity, 0.5)["Event"]
+        event["EventParameters"] += [
+            {"ParameterID": "AttackTime", "ParameterValue": attack},
+            {"ParameterID": "ReleaseTime", "ParameterValue": release},
+            {"ParameterID": "DecayTime", "ParameterValue": 0.2},
+            {"ParameterID": "Sustained", "ParameterValue": sustained},
+        ]
+        pattern.append({"Event": event})
+    doc = {"Pattern": [*pattern, _curve("HapticIntensityControl", 0.5, [(0.0, 0.8), (1.0, 0.3)])]}
+    path = tmp_path_factory.mktemp("over") / "over.ahap"
+    path.write_text(json.dumps(doc))
+    design, _, _ = read_design(path)
+    grid = 4.0 * (np.arange(4000) + 0.37) / 4000
+    level, _ = playback(doc).continuous_at(grid)
+    assert np.abs(design.amplitude_at(grid) - level**2).max() <= READ_TOLERANCE + 1e-9
