@@ -59,7 +59,7 @@ def test_list_names_every_benchmark(capsys) -> None:
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
                      "estimator", "accumulation", "edit-to-feel", "scale", "convert",
-                     "formats", "waves", "design-drag", "media", "compare",
+                     "formats", "ahap-reader", "waves", "design-drag", "media", "compare",
                      "convert-memory", "playback", "editor"]  # fmt: skip
 
 
