@@ -3,12 +3,16 @@
 Reading turns the pattern into one vibration design (timeline.edits.vibration): the felt
 amplitude is intensity squared, where intensity = event intensity x Attack/Decay/Release envelope x
 HapticIntensityControl (a multiplier, linear between curve points, stepped by dynamic
-parameters); sharpness = event sharpness + HapticSharpnessControl. Breakpoints sit at every
-event edge, envelope corner and control point; between them points are added (evenly in
-intensity) until the design's straight amplitude segments are within READ_TOLERANCE of the
-player's curve. Continuous events cover [Time, Time + EventDuration), so at a join the later
-event's value holds. Controls shape continuous events only (transients keep their own values).
-Audio events are skipped with a note.
+parameters); sharpness = event sharpness + HapticSharpnessControl, clamped to 0..1. Breakpoints
+sit at every event edge, envelope corner and ramp crossing, control point, and where a clamp
+starts; between them points are added (evenly in intensity) until the design's straight
+amplitude segments are within READ_TOLERANCE of the player's curve. Continuous events cover
+[Time, Time + EventDuration), so at a join the later event's value holds; overlapping ones add
+(summed from one table of their knots). Controls apply to every event, transients included
+(Apple's documentation; docs/formats.md quotes it), so the transients of Apple-made files are
+read as played; those of Meta's converter as written (it means them to play apart from its
+curves). Audio events are skipped with a note; out-of-range control values are clamped with a
+note, as Core Haptics clamps them; event types are matched in any case.
 
 Sharpness follows the tool a file came from. Meta's and Lofelt's converters (the signature:
 continuous events of intensity 1 and sharpness 0 shaped by curves) write sharpness =
@@ -17,9 +21,8 @@ point at each emphasis by 20 %; reading such a file undoes the ducking and squar
 sharpness. Other files (Apple's own, hand-made) are read with frequency = sharpness. The
 convention is kept with the design, so an export writes the file's numbers back.
 
-Writing fits the design in the domain the player interpolates in (module _envelope_fit):
-intensity control points within WRITE_TOLERANCE in amplitude, the same for sqrt sharpness;
-continuous events of at most 30 s, curves of at most 16 points, chained.
+Writing: importers.ahap_writer (controls neutral at every transient, no ducking);
+importers.ahap_playback evaluates a pattern as Apple documents playing it, for the tests.
 """
 
 from __future__ import annotations

@@ -13,8 +13,10 @@ events still follow the design:
   time sets its value from then on); the controls are the envelope divided by (minus) those
   event values. The event lasts until the envelope rises above its intensity, where an ordinary
   event takes over.
-* Where the envelope is silent at a transient and rises after it, the first WRITE_TOLERANCE of
-  amplitude is left silent (the error stays within the tolerance) and the controls are 1 and 0.
+* Where the envelope rises right after a transient, it is held at its level there until it has
+  risen by WRITE_TOLERANCE, then steps up (the error stays within the tolerance), so the
+  control can be 1 at the transient; from silence that leaves the first WRITE_TOLERANCE of the
+  rise silent, with the controls at 1 and 0.
 * In silences after the envelope (or between parts of it) that hold transients, a short curve
   sets the controls back to 1 and 0.
 
