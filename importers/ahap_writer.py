@@ -247,7 +247,8 @@ def _lay_out(layout: _Layout, r: _Piecewise, s: _Piecewise, start, end, marks) -
         level = r.at(a)
         if level > 0.0:
             rise = min(r.first_above(a, b, level), a + MAX_CONTINUOUS)
-            layout.continuous(a, rise, level, s.at(a), r, s)
+            if rise > a:  # (a rise within an ulp of the transient leaves no room)
+                layout.continuous(a, rise, level, s.at(a), r, s)
             layout.ordinary(rise, b, r, s)
             continue
         sounding = r.first_above(a, b, 0.0)  # the gap left silent after the transient
