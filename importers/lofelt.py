@@ -7,8 +7,8 @@ values lie in 0..1, times never go back; what Meta only flags for files from old
 emphasis weaker than its breakpoint, frequency breakpoints past the amplitude envelope) is kept and
 reported as a note. Writing takes timeline.edits.vibration.design_of of the sounding drive tracks:
 each emphasis on an amplitude breakpoint at its time (one is inserted when none is free there, so
-two emphases at one time both survive), raised to the envelope's level where it was weaker, as
-Meta's validator requires.
+two emphases at one time both survive; one before the envelope's start is silent there), raised
+to the envelope's level where it was weaker, as Meta's validator requires.
 """
 
 from __future__ import annotations
@@ -20,7 +20,13 @@ from typing import Any
 import numpy as np
 
 from importers import _vibration as vib
-from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, design_placements
+from timeline.edits.vibration import (
+    Emphasis,
+    VibrationDesign,
+    design_of,
+    design_placements,
+    sharpness_convention,
+)
 from timeline.model import Project
 from timeline.plugins.file_formats import FormatError, Imported, Progress
 from timeline.signal.vibration_design import DEFAULT_FREQUENCY
@@ -60,6 +66,12 @@ def _breakpoints(items: Any, key: str, where: str) -> list[dict[str, Any]]:
 
 def read_design(path: Path) -> tuple[VibrationDesign, list[str]]:
     """The .haptic file's design, and notes on what Meta's validator would flag."""
+    design, notes, _ = read_with_convention(path)
+    return design, notes
+
+
+def read_with_convention(path: Path) -> tuple[VibrationDesign, list[str], str]:
+    """read_design, and the AHAP sharpness convention the design keeps (_convention)."""
     doc = vib.load_json(path, ".haptic")
     if not isinstance(doc, dict):
         raise FormatError(f"{path.name} is not a .haptic file (it is not a JSON object)")
@@ -108,11 +120,24 @@ def read_design(path: Path) -> tuple[VibrationDesign, list[str]]:
         tuple(emphasis),
         max(last, *(b["time"] for b in frequency)) if frequency else last,
     )
-    return design, notes
+    return design, notes, _convention(doc)
 
 
-def design_document(design: VibrationDesign) -> dict[str, Any]:
-    """A v1 .haptic document for a design (emphasis on amplitude breakpoints at their times)."""
+LINEAR_NOTE = "AHAP sharpness = frequency"  # metadata.description of a design read from Apple's
+
+
+def _convention(doc: dict[str, Any]) -> str:
+    """The AHAP sharpness convention a design keeps: "linear" where we wrote LINEAR_NOTE (a
+    design that came from an Apple-made AHAP), else Meta's "sqrt"."""
+    meta = doc.get("metadata")
+    ours = isinstance(meta, dict) and meta.get("editor") == "haptic-timeline"
+    return "linear" if ours and meta.get("description") == LINEAR_NOTE else "sqrt"
+
+
+def design_document(design: VibrationDesign, convention: str = "sqrt") -> dict[str, Any]:
+    """A v1 .haptic document for a design (emphasis on amplitude breakpoints at their times);
+    a design in Apple's sharpness convention says so in its metadata, so an AHAP written from
+    the file again keeps it."""
     amplitude = [{"time": t, "amplitude": v} for t, v in design.amplitude]
     if len(amplitude) < 2 or amplitude[-1]["time"] <= amplitude[0]["time"]:
         # Meta refuses an envelope of fewer than two breakpoints or no length: a silent one
@@ -129,7 +154,7 @@ def design_document(design: VibrationDesign) -> dict[str, Any]:
             "source": "",
             "project": "",
             "tags": [],
-            "description": "",
+            "description": LINEAR_NOTE if convention == "linear" else "",
         },
         "signals": {"continuous": {"envelopes": envelopes}},
     }
@@ -162,21 +187,33 @@ def _with_emphasis(
         if free:
             bp = free.popleft()
         else:
-            bp = {"time": e.time, "amplitude": _level_for(e.time, out, amplitude[i : i + 1])}
+            level = _level_for(e.time, out, amplitude[i : i + 1], amplitude[0]["time"])
+            bp = {"time": e.time, "amplitude": level}
             out.append(bp)
         bp["emphasis"] = {"amplitude": max(e.amplitude, bp["amplitude"]), "frequency": e.frequency}
-    return out + amplitude[i:]
+    return _silent_until_start(out + amplitude[i:], amplitude[0])
 
 
-def _level_for(time: float, before: list[dict[str, Any]], after: list[dict[str, Any]]) -> float:
+def _silent_until_start(
+    points: list[dict[str, Any]], first: dict[str, Any]
+) -> list[dict[str, Any]]:
+    """Where emphasis were added before the envelope's first breakpoint, a silent breakpoint at
+    its time too, so the envelope steps up there instead of ramping from the added ones."""
+    k = next(j for j, bp in enumerate(points) if bp is first)
+    if k == 0 or first["amplitude"] == 0.0:
+        return points
+    return points[:k] + [{"time": first["time"], "amplitude": 0.0}] + points[k:]
+
+
+def _level_for(
+    time: float, before: list[dict[str, Any]], after: list[dict[str, Any]], start: float
+) -> float:
     """The level of a breakpoint added at `time`: that of the last at its time, the envelope
-    between the breakpoints around it, its first level before it, or 0 past its end."""
+    between the breakpoints around it, or 0 before the envelope's start and past its end."""
     if before and before[-1]["time"] == time:
         return before[-1]["amplitude"]
-    if not after:
+    if not after or time < start:
         return 0.0
-    if not before:
-        return after[0]["amplitude"]
     a, b = before[-1], after[0]
     return float(np.interp(time, [a["time"], b["time"]], [a["amplitude"], b["amplitude"]]))
 
@@ -193,14 +230,15 @@ class LofeltFormat:
     def read(self, path: Path, *, progress: Progress | None = None, **options: Any) -> Imported:
         """The file's envelopes and emphasis as one vibration design on a drive track."""
         path = Path(path)
-        design, notes = read_design(path)
+        design, notes, convention = read_with_convention(path)
         if progress is not None:
             progress(1.0)
-        return design_placements(design, path.stem, str(path), "sqrt", tuple(notes))
+        return design_placements(design, path.stem, str(path), convention, tuple(notes))
 
     def write(self, source: Project, path: Path, rate: float | None = None, **options: Any) -> None:
         """Write the project's sounding drive tracks as a v1 .haptic file."""
-        vib.write_json(design_document(design_of(source, rate=rate)), path)
+        convention = sharpness_convention(source)
+        vib.write_json(design_document(design_of(source, rate=rate), convention), path)
 
 
 def _check_version(version: Any, name: str) -> None:

@@ -15,7 +15,7 @@ PLOTS = ("mixer_speed", "quality_pareto", "resampler", "sim_integrators", "sim_s
 TITLES = ("Example projects:", "Mixer:", "Quality presets overall", "Resamplers:", "Integrators:",
           "Simulated knob:", "Accumulation against math.fsum", "Edit-to-feel latency",
           "Scale: full render", "Scale: building through edits", "Scale: project save",
-          "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:",
+          "Scale: peak pyramid", "Scale: start-up CPU", "Vibration formats:", "AHAP reader:",
           "Square, saw and triangle waves", "Drag a design with its emphasis",
           "A 1-minute float32 recording", "compare: wall s",
           "convert of a 16-bit mono WAV")  # fmt: skip
@@ -59,7 +59,7 @@ def test_list_names_every_benchmark(capsys) -> None:
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
                      "estimator", "accumulation", "edit-to-feel", "scale", "convert",
-                     "formats", "waves", "design-drag", "media", "compare",
+                     "formats", "ahap-reader", "waves", "design-drag", "media", "compare",
                      "convert-memory", "playback", "editor"]  # fmt: skip
 
 

@@ -8,6 +8,7 @@ import tempfile
 import tracemalloc
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -81,3 +82,36 @@ def test_a_file_over_the_size_cap_is_refused_before_it_is_read(tmp_path) -> None
         tracemalloc.stop()
     assert str(refused.value) == "big.ahap is larger than 64 MB, the most an AHAP file may be"
     assert peak < 2**20
+
+
+def _curve_ahap(points: int) -> str:
+    controls = [{"Time": 0.001 * k, "ParameterValue": 0.5} for k in range(points)]
+    return json.dumps(
+        {
+            "Pattern": [
+                {"Event": {"Time": 0.0, "EventType": "HapticContinuous", "EventDuration": 1.0}},
+                {
+                    "ParameterCurve": {
+                        "ParameterID": "HapticIntensityControl",
+                        "Time": 0.0,
+                        "ParameterCurveControlPoints": controls,
+                    }
+                },
+            ]
+        }
+    )
+
+
+def test_curve_points_count_against_the_entry_limit(tmp_path, monkeypatch) -> None:
+    """One curve of a million points was one entry (issue 25.4): its points count too."""
+    monkeypatch.setattr(ahap, "MAX_EVENTS", 100)
+    path = tmp_path / "curve.ahap"
+    path.write_text(_curve_ahap(98))  # 2 entries + 98 points: at the limit
+    design, _, _ = ahap.read_design(path)
+    assert design.amplitude_at(np.array([0.05]))[0] == pytest.approx(0.25)
+    path.write_text(_curve_ahap(99))
+    with pytest.raises(FormatError) as refused:
+        ahap.read_design(path)
+    assert str(refused.value) == (
+        "curve.ahap has 2 pattern entries and 99 curve control points; at most 100 in all are read"
+    )

@@ -36,7 +36,7 @@ VALID_HAPTIC = [
     "two_emphasis.haptic",
     "weak_emphasis.haptic",
 ]
-VALID_AHAP = ["apple_style.ahap", "meta_pair.ahap", "transients_only.ahap"]
+VALID_AHAP = ["apple_style.ahap", "control_above_1.ahap", "meta_pair.ahap", "transients_only.ahap"]
 REJECTED = {
     "invalid_amplitude_above_1.haptic": "amplitude breakpoint 2 amplitude must be between 0 and 1",
     "invalid_back_in_time.haptic": "amplitude breakpoint 3 goes back in time (0.1 s after 0.2 s)",
@@ -49,7 +49,6 @@ REJECTED = {
     "invalid_no_signals.haptic": "is not a .haptic file (no signals.continuous.envelopes)",
     "invalid_one_breakpoint.haptic": "the amplitude envelope has one breakpoint; it needs at least",
     "invalid_version_2.haptic": "is .haptic version 2; only version 1 is supported",
-    "invalid_control_above_1.ahap": "control point value must be between 0 and 1, not 1.5",
     "invalid_no_pattern.ahap": "is not an AHAP file (it has no Pattern list)",
     "invalid_parameter_curves_typo.ahap": "entry 2 is not an Event, ParameterCurve or Parameter",
 }
@@ -99,12 +98,14 @@ EMPHASIS = {
     "apple_style.ahap": [(0.0, 0.36, 0.9)],
     "meta_pair.ahap": [(0.5, 0.64, 0.3)],
     "transients_only.ahap": [(0.0, 1.0, 0.6), (0.25, 0.25, 0.2)],
+    "control_above_1.ahap": [],
 }
 NOTES = {
     "required_only.haptic": ["no frequency envelope: frequency 0.5 assumed"],
     "weak_emphasis.haptic": ["the emphasis at 0.1 s (0.2) is weaker than its breakpoint (0.5)"],
     "frequency_past_end.haptic": ["1 frequency breakpoint(s) lie outside the amplitude envelope"],
     "apple_style.ahap": ["AudioCustom events are not haptic and were skipped"],
+    "control_above_1.ahap": ["control values outside 0 to 1 were clamped, as Core Haptics does"],
 }
 
 

@@ -17,7 +17,7 @@ unit = st.floats(0.0, 1.0).map(lambda v: round(v, 4))
 time = st.floats(0.0, 3.0).map(lambda t: round(t, 3))
 
 
-def _attach_one_at_a_time(amplitude: list[dict[str, Any]], e: Emphasis) -> None:
+def _attach_one_at_a_time(amplitude: list[dict[str, Any]], e: Emphasis, start: float) -> None:
     """The writer before it scaled: a search and an insert per emphasis (quadratic)."""
     times = [b["time"] for b in amplitude]
     lo = int(np.searchsorted(times, e.time, side="left"))
@@ -26,7 +26,7 @@ def _attach_one_at_a_time(amplitude: list[dict[str, Any]], e: Emphasis) -> None:
     if free:
         bp = amplitude[free[0]]
     else:
-        if e.time > times[-1]:
+        if e.time > times[-1] or e.time < start:  # silent off the envelope (issue 23)
             level = 0.0
         elif hi > lo:
             level = amplitude[hi - 1]["amplitude"]
@@ -41,8 +41,12 @@ def _reference(design: VibrationDesign) -> list[dict[str, Any]]:
     amplitude = [{"time": t, "amplitude": v} for t, v in design.amplitude]
     if len(amplitude) < 2 or amplitude[-1]["time"] <= amplitude[0]["time"]:
         amplitude = [{"time": 0.0, "amplitude": 0.0}, {"time": design.duration, "amplitude": 0.0}]
+    first = amplitude[0]
     for e in design.emphasis:
-        _attach_one_at_a_time(amplitude, e)
+        _attach_one_at_a_time(amplitude, e, first["time"])
+    k = next(j for j, b in enumerate(amplitude) if b is first)
+    if k and first["amplitude"] > 0:  # added before the envelope: it steps up at its start
+        amplitude.insert(k, {"time": first["time"], "amplitude": 0.0})
     return amplitude
 
 

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from importers import ahap
+from importers.ahap_playback import playback
 from timeline import edits
 from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, place_design
 from timeline.files import importing
@@ -127,20 +128,17 @@ def test_ahap_intensity_is_fitted_where_the_player_interpolates(tmp_path):
     assert curves["HapticSharpnessControl"].at(np.array([1.0]))[0] == pytest.approx(0.5)
 
 
-def test_an_emphasis_ducks_the_intensity_point_it_sits_on(tmp_path):
+def test_an_emphasis_plays_at_its_own_intensity_over_an_unducked_envelope(tmp_path):
+    """Controls scale transients too (Apple): at the emphasis a continuous event restarts at the
+    envelope's intensity so the control is 1 there; no ducking is added (issue 23)."""
     design = VibrationDesign(
         ((0.0, 0.25), (0.1, 0.25), (0.2, 0.25)), ((0.0, 0.5),), (Emphasis(0.1, 0.64, 0.3),), 0.2
     )
     doc = _export(_design_project(design), tmp_path / "e.ahap")
-    points = [
-        (c["Time"] + p["Time"], p["ParameterValue"])
-        for c in _pattern(doc, "ParameterCurve")
-        if c["ParameterID"] == "HapticIntensityControl"
-        for p in c["ParameterCurveControlPoints"]
-    ]
-    assert (0.1, pytest.approx(0.5 * 0.8)) in points
-    transient = next(e for e in _pattern(doc, "Event") if e["EventType"] == "HapticTransient")
-    assert [p["ParameterValue"] for p in transient["EventParameters"]] == [0.8, 0.3]
+    played = playback(doc)
+    assert played.transients == [(0.1, 0.8, 0.3)]
+    level, _ = played.continuous_at(np.array([0.05, 0.1, 0.15]))
+    assert np.allclose(level**2, 0.25, rtol=0, atol=1e-12)
     assert design_of(_read(tmp_path / "e.ahap")).amplitude_at(np.array([0.1]))[0] == pytest.approx(
         0.25
     )

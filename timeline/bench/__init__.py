@@ -16,7 +16,8 @@ from timeline.plugins import discovery
 # e.g. the simulated knob's) take their place in it, and any not named here run last by name.
 ORDER = (
     "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
-    "accumulation", "edit-to-feel", "scale", "convert", "formats", "waves", "design-drag",
+    "accumulation", "edit-to-feel", "scale", "convert", "formats", "ahap-reader", "waves",
+    "design-drag",
     "media", "compare", "convert-memory", "playback", "editor",
 )  # fmt: skip
 
@@ -30,6 +31,7 @@ BUILT_IN = {
     "scale": "timeline.bench.scale",
     "convert": "timeline.bench.convert",
     "formats": "timeline.bench.formats",
+    "ahap-reader": "timeline.bench.ahap_reader",
     "waves": "timeline.bench.waves",
     "design-drag": "timeline.bench.design_drag",
     "media": "timeline.bench.project_media",
