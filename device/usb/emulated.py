@@ -2,8 +2,9 @@
 
 pyusb's own code (descriptor parsing, configuration, claiming, transfers) runs unchanged on top
 of it: `usb.core.find(backend=EmulatedBackend(EmulatedDevice()), ...)`. Behind the endpoints runs
-the knob's C firmware (device.usb.firmware) on the `sim` knob's motor and hand. Fault injection (FaultPlan) makes
-a transfer time out, an endpoint stall, the device vanish, or the host late enough to underrun.
+the knob's C firmware (device.usb.firmware) on the `sim` knob's motor and hand. Fault injection
+(FaultPlan) makes a transfer time out, an endpoint stall, the device vanish, or the host late
+enough to underrun.
 
 Time on the device passes in one of two ways. By default it follows the host: each telemetry
 read plays one report's worth of samples, so a stream runs as fast as the host can go (what most
