@@ -28,7 +28,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         type=positive,
         default=None,
         metavar="R",
-        help="sample rate of the written layers (default: the project's)",
+        help="sample rate of the written layers (default: the project's; firmware tables: one "
+        "entry per degree or per millisecond, end to end)",
     )
     p.add_argument(
         "--fixed-point",
@@ -45,8 +46,9 @@ def run(args: argparse.Namespace) -> int:
 
     project = load(args.project)
     options: dict[str, Any] = {"fixed_point": True} if args.fixed_point else {}
-    export_project(project, args.output, rate=args.rate, **options)
+    said = export_project(project, args.output, rate=args.rate, **options)
     for note in aliasing_notes(project, args.rate):
         print(f"haptic-timeline: warning: {note}", file=sys.stderr)
-    print(f"exported {args.project} -> {args.output}", file=sys.stderr)
+    print(f"exported {args.project} -> {args.output}" + (f": {said}" if said else ""),
+          file=sys.stderr)  # fmt: skip
     return 0
