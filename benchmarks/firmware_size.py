@@ -65,7 +65,8 @@ void _start(void) {
         if (usb[1]) ht_fw_bulk_out(&knob, transfer, usb[2]);
         if (ht_fw_report_ready(&knob)) usb[3] = (uint32_t)ht_fw_report(&knob, transfer);
         if (req & 0x80) usb[4] = (uint32_t)ht_fw_control_in(&knob, req & 0x7f, 86, transfer);
-        else if (req) usb[4] = (uint32_t)ht_fw_control_out(&knob, req, (uint16_t)usb[5], transfer, 8);
+        else if (req)
+            usb[4] = (uint32_t)ht_fw_control_out(&knob, req, (uint16_t)usb[5], transfer, 8);
     }
 }
 """
@@ -123,8 +124,10 @@ def main() -> int:
         print("arm-none-eabi-gcc not found (apt-get install gcc-arm-none-eabi): sizes skipped")
     per_tick = host_time_per_tick()
     load = os.getloadavg()[0]
-    print(f"host: {per_tick * 1e6:.3f} us per servo period (double, sim port included), "
-          f"{per_tick / 1e-4:.4f} of the 100 us period at 10 kHz; load average {load:.2f}")  # fmt: skip
+    print(
+        f"host: {per_tick * 1e6:.3f} us per servo period (double, sim port included), "
+        f"{per_tick / 1e-4:.4f} of the 100 us period at 10 kHz; load average {load:.2f}"
+    )
     return 0
 
 
