@@ -74,7 +74,8 @@ def test_firmware_tables_start_at_one_entry_per_degree_and_show_their_size(qtbot
     dialog = ExportOptions(project, tmp_path / "fan.h")
     qtbot.addWidget(dialog)
     assert dialog.rate.value() == pytest.approx(1.0) and dialog.options() == {}
-    assert dialog.size.text() == "281 entries a table, end to end: 1,124 bytes each as float32"
+    said = dialog.table_size.text()
+    assert said == "281 entries a table, end to end: 1,124 bytes each as float32"
     dialog.rate.setValue(0.5)
     dialog.fixed_point.setChecked(True)
-    assert dialog.size.text() == "561 entries a table, end to end: 1,122 bytes each as int16"
+    assert dialog.table_size.text() == "561 entries a table, end to end: 1,122 bytes each as int16"

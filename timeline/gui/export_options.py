@@ -9,6 +9,7 @@ step changes; fixed point writes them as int16.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from pathlib import Path
 from typing import Any
@@ -63,14 +64,13 @@ class ExportOptions(QDialog):
         self.grid = (
             getattr(writer_for(path), "grid", None) if path.suffix.lower() in FIRMWARE else None
         )
-        self.size = QLabel()
+        self.table_size = QLabel()
         if self.grid is not None:
             self.rate.valueChanged.connect(self.show_size)
             self.fixed_point.toggled.connect(self.show_size)
-            try:
+            # nothing to export yet: the project's step stays, and the size says why
+            with contextlib.suppress(HapticTimelineError):
                 self.default_rate = 1.0 / self.grid(project).step
-            except HapticTimelineError:
-                pass  # nothing to export yet: the project's step, and the size says why
             step = self.default_rate if self.axis == "time" else DEGREES / self.default_rate
             self.rate.setValue(step)
             self.show_size()
@@ -79,7 +79,7 @@ class ExportOptions(QDialog):
         form.addRow(label, self.rate)
         form.addRow("fixed point (--fixed-point)", self.fixed_point)
         if self.grid is not None:
-            form.addRow("size", self.size)
+            form.addRow("size", self.table_size)
         buttons = QDialogButtonBox(
             QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel
         )
@@ -92,10 +92,10 @@ class ExportOptions(QDialog):
         try:
             grid = self.grid(self.project, self.chosen_rate())  # type: ignore[misc]
         except HapticTimelineError as exc:
-            self.size.setText(str(exc))
+            self.table_size.setText(str(exc))
             return
         fixed = self.fixed_point.isChecked()
-        self.size.setText(
+        self.table_size.setText(
             f"{grid.count:,} entries a table, end to end: "
             f"{grid.count * (2 if fixed else 4):,} bytes each as {'int16' if fixed else 'float32'}"
         )
