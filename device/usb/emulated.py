@@ -112,8 +112,10 @@ class EmulatedDevice:
         self.unplugged = False
         self.halted: set[int] = set()
         self.configuration = 0
-        self.device_bytes = desc.device_descriptor(self.identity)
-        self.config_bytes = desc.configuration_descriptor(self.identity)
+        self.knob.set_identity(self.identity)
+        # the firmware's own descriptors, parsed as libusb would (descriptors.py)
+        self.device_bytes = self.knob.descriptor(desc.DESC_DEVICE, 0)
+        self.config_bytes = self.knob.descriptor(desc.DESC_CONFIGURATION, 0)
 
     def check_present(self) -> None:
         if self.unplugged:
@@ -328,5 +330,5 @@ class EmulatedBackend(usb.backend.IBackend):
         if kind == desc.DESC_CONFIGURATION and index == 0:
             return dev.config_bytes
         if kind == desc.DESC_STRING:
-            return desc.string_descriptor(dev.identity, index)
+            return dev.knob.descriptor(kind, index)
         raise IndexError(kind)

@@ -17,6 +17,7 @@ import pytest
 
 from device.sim import SimKnob
 from device.usb import UsbKnob
+from device.usb import descriptors as desc
 from device.usb import protocol as p
 from device.usb.emulated import EmulatedBackend, EmulatedDevice
 from device.usb.firmware import EmulatedKnob
@@ -49,6 +50,19 @@ def test_the_c_get_info_answer_is_the_protocol_modules(knob: dict) -> None:
     assert firmware.control_in(p.REQ_GET_INFO, 58) == p.encode_info(firmware.info)[:58]
     with pytest.raises(p.ProtocolError):
         firmware.control_in(p.REQ_GET_INFO, 57)
+
+
+@pytest.mark.parametrize("high_speed", [False, True])
+def test_the_c_descriptors_are_the_documented_bytes(high_speed: bool) -> None:
+    ident = desc.Identity(0x1209, 0x0D32, "Acme", "Knob Ü", "SN-42", high_speed)
+    firmware = EmulatedKnob()
+    firmware.set_identity(ident)
+    assert firmware.descriptor(desc.DESC_DEVICE, 0) == desc.device_descriptor(ident)
+    assert firmware.descriptor(desc.DESC_CONFIGURATION, 0) == desc.configuration_descriptor(ident)
+    for index in range(4):
+        assert firmware.descriptor(desc.DESC_STRING, index) == desc.string_descriptor(ident, index)
+    with pytest.raises(IndexError):
+        firmware.descriptor(desc.DESC_STRING, 4)
 
 
 @pytest.mark.parametrize(

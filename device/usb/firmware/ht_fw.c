@@ -64,6 +64,10 @@ static size_t seal(uint8_t *out, size_t length) {
     return length + HT_CRC_SIZE;
 }
 
+/* 1209:0001 is pid.codes' test ID: a product registers its own (docs/usb-protocol.md). */
+static const ht_identity DEFAULT_IDENTITY = {
+    0x1209, 0x0001, 64, {"haptic-timeline", "Haptic knob", "0001"}};
+
 /* --- set-up --------------------------------------------------------------------------------- */
 
 /* No C library: these two are all the firmware needs of <string.h>. */
@@ -104,11 +108,76 @@ int ht_fw_init(ht_fw *fw, const ht_config *cfg, void *port) {
     zero(fw, sizeof *fw);
     fw->cfg = *cfg;
     fw->port = port;
+    fw->identity = DEFAULT_IDENTITY;
     fw->watchdog_ms = cfg->watchdog_ms;
     fw->torque_limit = cfg->max_torque;
     fw->state = HT_STATE_IDLE;
     restart_loop(fw);
     return 0;
+}
+
+/* --- standard descriptors ------------------------------------------------------------------ */
+
+void ht_fw_set_identity(ht_fw *fw, const ht_identity *identity) { fw->identity = *identity; }
+
+/* UTF-8 (the Basic Multilingual Plane) to a USB string descriptor's UTF-16LE; bytes written. */
+static uint32_t utf16(const char *text, uint8_t *out, uint32_t room) {
+    const uint8_t *s = (const uint8_t *)text;
+    uint32_t n = 0;
+    while (*s && n + 2 <= room) {
+        uint32_t c = *s++;
+        if (c >= 0xe0 && s[0] && s[1]) {
+            c = ((c & 0x0fu) << 12) | ((uint32_t)(s[0] & 0x3fu) << 6) | (s[1] & 0x3fu);
+            s += 2;
+        } else if (c >= 0xc0 && s[0]) {
+            c = ((c & 0x1fu) << 6) | (s[0] & 0x3fu);
+            s += 1;
+        }
+        put_u16(out + n, c);
+        n += 2;
+    }
+    return n;
+}
+
+int ht_fw_descriptor(const ht_fw *fw, uint8_t type, uint8_t index, uint8_t *out,
+                     uint16_t capacity) {
+    uint8_t d[255];
+    uint32_t n, i;
+    const ht_identity *id = &fw->identity;
+    if (type == 1) { /* device: USB 2.0, class per interface, EP0 64 bytes, strings 1-3 */
+        const uint8_t head[8] = {18, 1, 0x00, 0x02, 0, 0, 0, 64};
+        copy(d, head, 8);
+        put_u16(d + 8, id->vid);
+        put_u16(d + 10, id->pid);
+        put_u16(d + 12, 0x0100);
+        d[14] = 1;
+        d[15] = 2;
+        d[16] = 3;
+        d[17] = 1;
+        n = 18;
+    } else if (type == 2 && index == 0) { /* configuration, interface 0xFF/0x48/2, 0x01, 0x81 */
+        const uint8_t body[32] = {9, 2, 32, 0, 1, 1, 0, 0xc0, 50, /* self-powered, 100 mA */
+                                  9, 4, 0, 0, 2, 0xff, 0x48, HT_PROTOCOL_VERSION, 0,
+                                  7, 5, 0x01, 2, 0, 0, 0, 7, 5, 0x81, 2, 0, 0, 0};
+        copy(d, body, 32);
+        put_u16(d + 22, id->packet_size);
+        put_u16(d + 29, id->packet_size);
+        n = 32;
+    } else if (type == 3 && index == 0) { /* the LANGID list: English (United States) */
+        d[0] = 4;
+        d[1] = 3;
+        put_u16(d + 2, 0x0409);
+        n = 4;
+    } else if (type == 3 && index <= 3 && id->strings[index - 1]) {
+        n = 2 + utf16(id->strings[index - 1], d + 2, sizeof d - 2);
+        d[0] = (uint8_t)n;
+        d[1] = 3;
+    } else {
+        return -1;
+    }
+    if (n > capacity) n = capacity;
+    for (i = 0; i < n; i++) out[i] = d[i];
+    return (int)n;
 }
 
 /* --- control requests ----------------------------------------------------------------------- */

@@ -106,6 +106,13 @@ typedef struct {
     ht_real gains[3];          /* observer gain L (kalman, tracking); zeros for a filter */
 } ht_config;
 
+/* Who the device says it is (USB descriptors): IDs, bulk packet size (64 full speed, 512 high
+ * speed) and the manufacturer, product and serial strings (UTF-8, NUL-terminated). */
+typedef struct {
+    uint16_t vid, pid, packet_size;
+    const char *strings[3];
+} ht_identity;
+
 /* A table over the position axis, as `haptic-timeline export -o TABLES.h` writes it: `count`
  * entries from `start` (rad), `rate` entries per radian, each of torque (N*m), damping
  * (N*m*s/rad) and mass (kg*m^2) given as float32 or as int16 times a scale; NULL when absent. */
@@ -120,6 +127,7 @@ typedef struct {
 typedef struct {
     ht_config cfg;
     void *port; /* handed to the HAL */
+    ht_identity identity;
     /* protocol state */
     uint8_t state, mask, end, table_mode, saturated, last_use_mass;
     uint16_t flags, watchdog_ms;
@@ -149,6 +157,15 @@ int ht_fw_control_in(ht_fw *fw, uint8_t request, uint16_t length, uint8_t *out);
 int ht_fw_control_out(ht_fw *fw, uint8_t request, uint16_t value, const uint8_t *data,
                       uint16_t length);
 void ht_fw_bulk_out(ht_fw *fw, const uint8_t *data, size_t length);
+
+/* The standard descriptors (GET_DESCRIPTOR): device (type 1), configuration (2, index 0: the
+ * whole vendor interface with its two bulk endpoints), string (3; index 0: the LANGID list).
+ * Returns the length written to out (at most `capacity`: room for 255 bytes takes any), or -1
+ * when there is no such descriptor. Identity as set by ht_fw_set_identity (default: 1209:0001,
+ * full speed, "haptic-timeline", "Haptic knob", "0001"). */
+void ht_fw_set_identity(ht_fw *fw, const ht_identity *identity);
+int ht_fw_descriptor(const ht_fw *fw, uint8_t type, uint8_t index, uint8_t *out,
+                     uint16_t capacity);
 
 /* Bytes of the next report written to out (room for HT_REPORT_HEADER_SIZE + 12 *
  * report_samples + 4 bytes); ht_fw_report_ready says a full report's samples are waiting. */

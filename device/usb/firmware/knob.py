@@ -19,6 +19,7 @@ import numpy as np
 
 from device.sim import KnobParams
 from device.sim.plant import step_matrix, system_matrix
+from device.usb import descriptors as desc
 from device.usb import protocol as p
 from device.usb.firmware.build import shared_library
 from timeline.plugins.device_protocol import Hand
@@ -54,6 +55,14 @@ class Table(ctypes.Structure):
     ]  # fmt: skip
 
 
+class HtIdentity(ctypes.Structure):
+    """ht_identity of ht_fw.h: USB IDs, packet size and strings (UTF-8)."""
+
+    _fields_ = [  # noqa: RUF012 (ctypes' declaration)
+        ("vid", _U16), ("pid", _U16), ("packet_size", _U16), ("strings", ctypes.c_char_p * 3),
+    ]  # fmt: skip
+
+
 @cache
 def library() -> ctypes.CDLL:
     """The compiled firmware with the host port (built once per source version)."""
@@ -74,6 +83,8 @@ def library() -> ctypes.CDLL:
         "ht_fw_bulk_out": (None, [pointer, ctypes.c_char_p, size]),
         "ht_fw_report": (size, [pointer, ctypes.c_char_p]),
         "ht_fw_play_table": (None, [pointer, ctypes.POINTER(Table), _F64]),
+        "ht_fw_set_identity": (None, [pointer, ctypes.POINTER(HtIdentity)]),
+        "ht_fw_descriptor": (ctypes.c_int, [pointer, _U8, _U8, ctypes.c_char_p, _U16]),
     }
     for name, (restype, argtypes) in signatures.items():
         function = getattr(lib, name)
@@ -165,6 +176,8 @@ class EmulatedKnob:
         self._out = ctypes.create_string_buffer(p.report_bytes(report_samples))
         self._trace: np.ndarray | None = None
         self._table: tuple[Table, list[np.ndarray]] | None = None
+        self._identity: HtIdentity | None = None
+        self._strings: ctypes.Array[ctypes.c_char_p] | None = None
         lib.ht_sim_init(
             self._sim, _MAP(*self.physics.rows(self.hand)), params.period, params.quantum,
             params.coulomb,
@@ -199,7 +212,24 @@ class EmulatedKnob:
         status = self._read()[0]
         return status[0] == p.STATE_RUNNING and not status[4] and not status[5]
 
-    # --- control requests -------------------------------------------------------------------
+    # --- descriptors and control requests -------------------------------------------------------
+    def set_identity(self, identity: desc.Identity) -> None:
+        """Who the device says it is in its descriptors (the C keeps pointers to the strings)."""
+        texts = (identity.manufacturer, identity.product, identity.serial)
+        strings = (ctypes.c_char_p * 3)(*(text.encode() for text in texts))
+        self._identity = HtIdentity(identity.vid, identity.pid, identity.packet_size, strings)
+        self._strings = strings  # alive as long as the firmware points at them
+        self._lib.ht_fw_set_identity(self._fw, ctypes.byref(self._identity))
+
+    def descriptor(self, kind: int, index: int) -> bytes:
+        """A standard descriptor's bytes, as the firmware answers GET_DESCRIPTOR; IndexError when
+        it has none."""
+        out = ctypes.create_string_buffer(255)
+        n = self._lib.ht_fw_descriptor(self._fw, kind, index, out, 255)
+        if n < 0:
+            raise IndexError((kind, index))
+        return out.raw[:n]
+
     def control_in(self, request: int, length: int) -> bytes:
         """Answer a vendor IN request, or raise ProtocolError (a STALL on endpoint 0)."""
         out = ctypes.create_string_buffer(p.INFO_SIZE)
