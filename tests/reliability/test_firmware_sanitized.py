@@ -6,7 +6,7 @@ inf and 1e38 samples), random vendor requests, servo periods and reports, run by
 harness (device/usb/firmware/ports/sim/fuzz_main.c), which aborts if a torque it applies is not
 finite or above the maximum. The harness must exit cleanly (no sanitizer report) and every
 report and GET_INFO answer it wrote must decode, with finite samples within the maximum.
-Heavy: the sanitized build takes seconds and 100 sessions about 12 s (CI's heavy step).
+Heavy: the sanitized build takes seconds and 100 sessions about 20 s (CI's heavy step).
 """
 
 from __future__ import annotations
@@ -63,6 +63,9 @@ command = st.one_of(
     st.integers(0, 800).map(lambda n: struct.pack("<BH", 2, n)),
     st.just(b"\x03"),
     st.tuples(st.integers(0, 3), st.integers(0, 300)).map(lambda r: struct.pack("<BBH", 4, *r)),
+    st.tuples(st.integers(0, 4), st.integers(0, 5), st.integers(0, 300)).map(
+        lambda r: struct.pack("<BBBH", 5, *r)
+    ),
 )
 
 
@@ -96,11 +99,18 @@ def test_random_and_mutated_blocks_never_crash_or_exceed_the_maximum(harness, ma
         timeout=60, check=False,
     )  # fmt: skip
     assert done.returncode == 0 and not done.stderr, done.stderr.decode(errors="replace")[-2000:]
-    for answer in outputs(done.stdout):
-        if answer[:2] == b"HT":
+    kinds = [c[0] for c in session if c[0] in (3, 4, 5)] + [3]  # what each answer is
+    answers = outputs(done.stdout)
+    assert len(answers) == len(kinds)
+    for kind, answer in zip(kinds, answers, strict=True):
+        if kind == 3:
             report = p.decode_report(answer)
             assert np.isfinite(report.samples).all()
             assert (np.abs(report.samples[:, 2]) <= MAX_TORQUE).all()
-        elif answer:  # GET_INFO: all 86 bytes, or the first of them as many as asked
+        elif kind == 4 and answer:  # GET_INFO: all 86 bytes, or the first as many as asked
+            assert len(answer) >= p.INFO_V20_SIZE
             whole = answer if len(answer) == p.INFO_SIZE else answer[: p.INFO_V20_SIZE]
             assert p.decode_info(whole).max_torque == MAX_TORQUE
+        elif kind == 5 and len(answer) > 1:  # a descriptor, cut to the length asked for
+            assert answer[1] in (1, 2, 3)
+            assert len(answer) <= (32 if answer[1] == 2 else answer[0])  # configuration: 32

@@ -6,6 +6,7 @@
  *   2 n:u16                    n servo periods
  *   3                          a telemetry report, written to stdout as len:u32 bytes
  *   4 req:u8 length:u16        a vendor IN request, its answer written like a report
+ *   5 type:u8 index:u8 cap:u16  a GET_DESCRIPTOR, its answer written like a report
  * After every period it checks the torque applied is finite and within the maximum (else it
  * aborts); the caller decodes the reports. Exits 0 at the end of the input. */
 #include <math.h>
@@ -81,6 +82,10 @@ int main(void) {
         } else if (op == 4 && read_bytes(buffer, 1) && read_u16(&b)) {
             int got = ht_fw_control_in(&fw, buffer[0], (uint16_t)b, buffer + 1);
             emit(buffer + 1, got < 0 ? 0u : (size_t)got);
+        } else if (op == 5 && read_bytes(buffer, 2) && read_u16(&b)) {
+            int got = ht_fw_descriptor(&fw, buffer[0], buffer[1], buffer + 2, (uint16_t)b);
+            if (got > (int)b) abort();
+            emit(buffer + 2, got < 0 ? 0u : (size_t)got);
         } else {
             break; /* truncated input ends the run */
         }
