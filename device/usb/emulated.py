@@ -1,9 +1,10 @@
 """An emulated haptic-timeline USB device that plugs into pyusb as a custom backend.
 
 pyusb's own code (descriptor parsing, configuration, claiming, transfers) runs unchanged on top
-of it: `usb.core.find(backend=EmulatedBackend(EmulatedDevice()), ...)`. Behind the endpoints the
-firmware (device.usb.firmware) runs the `sim` knob's physics. Fault injection (FaultPlan) makes
-a transfer time out, an endpoint stall, the device vanish, or the host late enough to underrun.
+of it: `usb.core.find(backend=EmulatedBackend(EmulatedDevice()), ...)`. Behind the endpoints runs
+the knob's C firmware (device.usb.firmware) on the `sim` knob's motor and hand. Fault injection
+(FaultPlan) makes a transfer time out, an endpoint stall, the device vanish, or the host late
+enough to underrun.
 
 Time on the device passes in one of two ways. By default it follows the host: each telemetry
 read plays one report's worth of samples, so a stream runs as fast as the host can go (what most
@@ -27,11 +28,11 @@ import usb.backend
 import usb.core
 import usb.util
 
-from device.sim import KnobPhysics
 from device.usb import descriptors as desc
 from device.usb import protocol as p
 from device.usb.firmware import EmulatedKnob
-from timeline.plugins.device_protocol import CoefficientBlock, Hand
+from device.usb.firmware.knob import library
+from timeline.plugins.device_protocol import Hand
 
 _GET_DESCRIPTOR = 0x06
 _NO_DEVICE = ("No such device (it may have been disconnected)", -4, errno.ENODEV)
@@ -111,8 +112,10 @@ class EmulatedDevice:
         self.unplugged = False
         self.halted: set[int] = set()
         self.configuration = 0
-        self.device_bytes = desc.device_descriptor(self.identity)
-        self.config_bytes = desc.configuration_descriptor(self.identity)
+        self.knob.set_identity(self.identity)
+        # the firmware's own descriptors, parsed as libusb would (descriptors.py)
+        self.device_bytes = self.knob.descriptor(desc.DESC_DEVICE, 0)
+        self.config_bytes = self.knob.descriptor(desc.DESC_CONFIGURATION, 0)
 
     def check_present(self) -> None:
         if self.unplugged:
@@ -192,18 +195,9 @@ class EmulatedBackend(usb.backend.IBackend):
         self.devices = list(devices)
 
     def warm_up(self) -> None:
-        """Load the firmware's compiled servo loop, so the wall clock does not run on while it
-        loads during the first block."""
-        n = 8
-        small = np.full(n, 1e-3)
-        for dev in self.devices:
-            physics = KnobPhysics(dev.knob.physics.params)
-            physics.start(dev.knob.hand)
-            # A spring, a damper (and a mass): the stability checks each block runs compile
-            # their loop model for each combination on its first use.
-            for m in (None, np.full(n, 1e-7)):
-                physics.run_block(CoefficientBlock(small, small, small * 1e-2, m))
-            physics.run_idle(1)
+        """Load the compiled firmware (each device already did: nothing is left to load while
+        the wall clock runs)."""
+        library()
 
     @property
     def realtime(self) -> bool:
@@ -336,5 +330,5 @@ class EmulatedBackend(usb.backend.IBackend):
         if kind == desc.DESC_CONFIGURATION and index == 0:
             return dev.config_bytes
         if kind == desc.DESC_STRING:
-            return desc.string_descriptor(dev.identity, index)
+            return dev.knob.descriptor(kind, index)
         raise IndexError(kind)

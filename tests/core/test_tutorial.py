@@ -58,7 +58,7 @@ def test_tutorial_runs_and_shows_what_it_says(tmp_path, monkeypatch, capsys):
     for layer in ("torque", "damping", "mass"):
         np.testing.assert_allclose(getattr(table, layer), getattr(shipped, layer), atol=1e-12)
     assert table.torque[0] == pytest.approx(0.8 * 0.18)  # the lower wall pushes up at 0 degrees
-    assert "#define FAN_TABLES_COUNT 28000" in (tmp_path / "fan_tables.h").read_text()
+    assert "#define FAN_TABLES_COUNT 281" in (tmp_path / "fan_tables.h").read_text()
 
     # part 2: the buzz at 0.25 s is the sine at track gain 0.5, computed here independently
     drive = namespace["drive_torque"]

@@ -17,7 +17,7 @@ from timeline.plugins.file_formats import FormatError
 
 FAN_KNOB = Path(__file__).resolve().parents[2] / "projects" / "fan_knob.htl"
 PER_DEGREE = 180.0 / math.pi  # one entry per degree
-INDICES = (0, 1, 50, 110, 170, 279)
+INDICES = (0, 1, 50, 110, 170, 279, 280)
 
 PROGRAM = """
 #include <stdio.h>
@@ -73,9 +73,9 @@ def test_the_header_compiles_and_holds_the_rendered_tables(tmp_path, layers, fix
     args = ["export", str(FAN_KNOB), "-o", str(header), "--rate", repr(PER_DEGREE)]
     assert main(args + (["--fixed-point"] if fixed else [])) == 0
     (count, start, step), *rows = _compile_and_run(tmp_path, header, fixed)
-    assert count == layers.length == 280 and start == 0.0
+    assert count == layers.length + 1 == 281 and start == 0.0  # 0 to 280 deg, both ends
     assert step == pytest.approx(math.radians(1.0), rel=1e-7)
-    for k, row in zip(INDICES, rows, strict=True):
+    for k, row in zip(INDICES[:-1], rows[:-1], strict=True):
         for name, got in zip(("torque", "damping", "mass"), row, strict=True):
             want = layers.columns[name][k]
             peak = np.max(np.abs(layers.columns[name]))
@@ -84,7 +84,21 @@ def test_the_header_compiles_and_holds_the_rendered_tables(tmp_path, layers, fix
             assert abs(got - want) <= bound, (name, k)
     # the walls survive: 0.8 of full torque up at Off, pushing back hard at 279 deg (past Hi)
     assert rows[0][0] == pytest.approx(0.144, rel=1e-4)
-    assert rows[-1][0] == pytest.approx(-0.171 * 0.8, rel=1e-4)
+    assert rows[-2][0] == pytest.approx(-0.171 * 0.8, rel=1e-4)
+    # ... and the axis end itself: the wall's value at 280 deg, not the one a degree before
+    assert rows[-1][0] == pytest.approx(-0.144, rel=1e-4)
+
+
+def test_the_default_tables_cover_the_axis_at_one_entry_per_degree_and_say_their_size(
+    tmp_path, capsys
+):
+    header = tmp_path / "fan.h"
+    assert main(["export", str(FAN_KNOB), "-o", str(header)]) == 0
+    said = "3 table(s) x 281 entries (every 1 deg from 0 to 280 deg), 3,372 bytes of float32"
+    assert said in capsys.readouterr().err
+    text = header.read_text()
+    assert "#define FAN_COUNT 281" in text and f"/* Size: {said}. */" in text
+    assert "radians, not degrees" in text and "#define FAN_RATE 57.29577951308232" in text
 
 
 def test_json_tables_follow_the_documented_layout(tmp_path, layers):
@@ -97,11 +111,11 @@ def test_json_tables_follow_the_documented_layout(tmp_path, layers):
         "position",
         "rad",
     )
-    assert doc["count"] == 280 and doc["step"] == pytest.approx(math.radians(1.0))
+    assert doc["count"] == 281 and doc["step"] == pytest.approx(math.radians(1.0))
     torque = doc["tables"]["torque"]
     assert torque["type"] == "int16" and torque["unit"] == "N*m"
     assert max(abs(v) for v in torque["values"]) == 32767
-    restored = np.array(torque["values"]) * torque["scale"]
+    restored = np.array(torque["values"])[:-1] * torque["scale"]
     assert np.max(np.abs(restored - layers.columns["torque"])) <= torque["scale"] / 2 + 1e-12
 
 
@@ -109,7 +123,7 @@ def test_the_header_is_named_after_the_file_not_its_temporary(tmp_path):
     out = tmp_path / "2 knob-v1.h"
     exporting.export_project(projectfile.load(FAN_KNOB), out, rate=PER_DEGREE)
     text = out.read_text()
-    assert "#define T_2_KNOB_V1_COUNT 280" in text and "t_2_knob_v1_torque[" in text
+    assert "#define T_2_KNOB_V1_COUNT 281" in text and "t_2_knob_v1_torque[" in text
 
 
 def test_a_position_project_to_wav_explains_its_rate(tmp_path):

@@ -35,8 +35,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default=None,
         metavar="R",
         help="sample rate of the written layers: samples per second, or per radian on a "
-        "position project; 1/deg also (default: the project's); for .otio and .otioz the "
-        "edit's frame rate (24, 25, 30, 23.976, ...), for video editors' tools",
+        "position project; 1/deg also (default: the project's; firmware tables: one entry "
+        "per degree or per millisecond, end to end); for .otio and .otioz the edit's frame "
+        "rate (24, 25, 30, 23.976, ...), for video editors' tools",
     )
     p.add_argument(
         "--fixed-point",
@@ -67,9 +68,10 @@ def run(args: argparse.Namespace) -> int:
         )
     rate = None if args.rate is None else rate_on_axis(args.rate, project.axis)
     options: dict[str, Any] = {"fixed_point": True} if args.fixed_point else {}
-    export_project(project, args.output, rate=rate, **options)
+    said = export_project(project, args.output, rate=rate, **options)
     frames = writer_for(args.output).name == "otio"  # a frame rate: nothing is resampled
     for note in [] if frames else aliasing_notes(project, rate):
         print(f"haptic-timeline: warning: {note}", file=sys.stderr)
-    print(f"exported {args.project} -> {args.output}", file=sys.stderr)
+    print(f"exported {args.project} -> {args.output}" + (f": {said}" if said else ""),
+          file=sys.stderr)  # fmt: skip
     return 0

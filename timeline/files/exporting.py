@@ -88,23 +88,26 @@ def export_project(
     rate: float | None = None,
     progress: Progress | None = None,
     **options: Any,
-) -> None:
-    """Write a project to a file whose extension picks the format (.wav, .csv, .mat, .ahap, ...)."""
+) -> str | None:
+    """Write a project to a file whose extension picks the format (.wav, .csv, .mat, .ahap, ...).
+
+    Returns what the writer says about the file, if anything (a firmware table's size)."""
     path = Path(path)
     fmt = writer_for(path)
     if fmt.writes == "layers":
         layers = project_layers(project, rate, progress=_scaled(progress, RENDER_SHARE))
         write_layers(layers, path, progress=progress, **options)
-        return
+        return None
     if project.duration <= 0:
         raise FormatError("the project has no clips to export")
     if rate is not None:
         options["rate"] = rate
     if progress:
         progress(0.0)
-    _write(fmt, project, path, options)
+    said = _write(fmt, project, path, options)
     if progress:
         progress(1.0)
+    return said
 
 
 def write_layers(
@@ -134,12 +137,17 @@ def export_tile(
     _write(fmt, tile_layers(tile, rate, name=options.pop("name", "value")), path, options)
 
 
-def _write(fmt: Any, source: Any, path: Path, options: dict[str, Any]) -> None:
+def _write(fmt: Any, source: Any, path: Path, options: dict[str, Any]) -> str | None:
     """Write atomically; the writer is told the final path as `target` (it writes to a temporary
-    beside it), so names inside the file and media written beside it follow the real name."""
+    beside it), so names inside the file and media written beside it follow the real name.
+    Returns the writer's one line about the file, when it says one."""
+    said: list[Any] = []
     try:
         check_target(path)
-        write_atomically(path, lambda tmp: fmt.write(source, tmp, target=path, **options))
+        write_atomically(
+            path, lambda tmp: said.append(fmt.write(source, tmp, target=path, **options))
+        )
+        return said[0] if said and isinstance(said[0], str) else None
     except HapticTimelineError:
         raise
     except OSError as exc:
