@@ -5,13 +5,9 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
 
 from timeline.cli.options import add_range_options, parse_tracks
 from timeline.errors import HapticTimelineError
-
-if TYPE_CHECKING:  # numpy and the mixer load when something is rendered, not for --help
-    from timeline.plugins.file_formats import Layers
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -20,23 +16,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("-o", "--output", required=True, help="OUT.csv, OUT.wav, OUT.mat or OUT.npz")
     add_range_options(p)
     p.set_defaults(func=run)
-
-
-def _write_npz(layers: Layers, path: Path) -> None:
-    import numpy as np
-
-    from timeline.files.atomic import write_atomically
-
-    axis = "time" if layers.axis == "time" else "angle"
-    positions = layers.start + np.arange(layers.length) / layers.rate
-    arrays: dict[str, Any] = {axis: positions, "rate": np.float64(layers.rate)}
-    arrays.update((k, np.asarray(v)) for k, v in layers.columns.items())
-
-    def write(tmp: Path) -> None:
-        with open(tmp, "wb") as f:
-            np.savez(f, **arrays)
-
-    write_atomically(path, write)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -57,10 +36,7 @@ def run(args: argparse.Namespace) -> int:
         raise HapticTimelineError("the project has no layers to render (no clips, or all muted)")
     layers = Layers(columns, rate, start, project.axis)
     output = Path(args.output)
-    if output.suffix.lower() == ".npz":
-        _write_npz(layers, output)
-    else:
-        write_layers(layers, output)
+    write_layers(layers, output)
     print(
         f"rendered {', '.join(columns)}: {layers.length} samples at {rate:g}/{project.unit} "
         f"({start:g} to {stop:g} {project.unit}, {args.quality}) -> {args.output}",
