@@ -8,7 +8,7 @@ the axis column and its unit (`time` in s, or `angle_deg` in degrees on a positi
 each column's layer kind and SI unit, and the exact rate (samples per s, or per degree with the
 per-radian number the project keeps). Importing such a file puts each column back on a track of
 its kind at the values written; a file without the line is a unitless shape (1 = the track's
-full scale), and the import says so.
+full scale), and a table's import says so (a recording's samples are a shape by nature).
 """
 
 from __future__ import annotations
@@ -16,13 +16,14 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from timeline.errors import PluginError
 from timeline.plugins.file_formats import Imported, Placement
 from timeline.plugins.track_kinds import TrackKind, track_kind
-from timeline.tiles import SampledTile
+from timeline.tiles import SampledTile, Tile
 
 PREFIX = "haptic-timeline units:"
 ANGLE_DEG = "angle_deg"  # the position axis column: degrees (older files: `angle` in radians)
@@ -131,5 +132,23 @@ def kind_placements(
         clip = {"gain": unit_gain(kind)}
         placements.append(Placement(tile, start=float(start), kind=kind.id, clip=clip))
     said = ", ".join(f"{name} in {track_kind(units.kinds[name]).si_unit}" for name, _ in columns)
-    note = f"{stem} says its layers ({said}): placed on tracks of those kinds at those values"
+    axis = "a time project's" if units.axis == "time" else "a position project's"
+    note = (
+        f"{Path(source).name} holds {axis} layers ({said}): placed on tracks of those kinds at "
+        "those values"
+    )
     return Imported(tuple(placements), notes=(note,))
+
+
+def shape_note(filename: str) -> str:
+    """The note for a table that does not say what its numbers are."""
+    return (
+        f"{filename} does not say its layer kind or unit (no '{PREFIX}' line): its values are "
+        "read as a unitless shape, 1 = the track's full scale"
+    )
+
+
+def as_shape(result: Tile | Imported, filename: str) -> Imported:
+    """A table's tile (or placed tile) with the note that it is a shape."""
+    placed = result if isinstance(result, Imported) else Imported((Placement(result),))
+    return Imported(placed.placements, placed.tracks, (*placed.notes, shape_note(filename)))

@@ -114,7 +114,8 @@ class MatlabFormat:
             columns = [(k, finite_values(_numeric_vector(variables[k]), f"{k} in {path.name}"))
                        for k in names]  # fmt: skip
             return _units.kind_placements(columns, units, chosen, start, path.stem, str(path))
-        return placed_tile(values, chosen, start, f"{path.stem} {name}", str(path))
+        tile = placed_tile(values, chosen, start, f"{path.stem} {name}", str(path))
+        return _units.as_shape(tile, path.name)
 
     @staticmethod
     def _choose(

@@ -196,7 +196,8 @@ class TextFormat:
             columns = [(n, finite_values(table.values[:, table.names.index(n)], path.name))
                        for n in names]  # fmt: skip
             return _units.kind_placements(columns, units, chosen, start, path.stem, str(path))
-        return placed_tile(values, chosen, start, f"{path.stem} {label}", str(path))
+        tile = placed_tile(values, chosen, start, f"{path.stem} {label}", str(path))
+        return _units.as_shape(tile, path.name)
 
     def write(self, source: Layers, path: Path, **options: Any) -> None:
         """A time column then one column per layer, 17 significant digits (exact round trip).

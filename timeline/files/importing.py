@@ -59,20 +59,8 @@ def read_file(
         except OSError as exc:
             raise FormatError(f"cannot read {path.name} ({exc.strerror or exc})") from None
         if result is not None:
-            imported = as_imported(result)
-            return _noted_shape(imported, path.name) if fmt.reads == "tile" else imported
+            return as_imported(result)
     raise FormatError(f"{path.name} is not a file any {path.suffix.lower()} format recognises")
-
-
-def _noted_shape(imported: Imported, filename: str) -> Imported:
-    """A table or recording that names no layer kind, with a note saying how it is read."""
-    if any(p.kind is not None or p.track for p in imported.placements):
-        return imported
-    note = (
-        f"{filename} does not say its layer kind or unit: its values are read as a unitless "
-        "shape, 1 = the track's full scale"
-    )
-    return Imported(imported.placements, imported.tracks, (*imported.notes, note))
 
 
 def import_file(
