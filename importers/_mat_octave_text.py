@@ -9,8 +9,8 @@ variable "# name: NAME" and "# type: TYPE" lines followed by
   (N-d arrays, and every intNN matrix);
 * string, sq_string: "# elements: E", then per row "# length: L" and a line of L characters;
 * range: "# base, limit, increment" and a line of three numbers (a row vector);
-* anything else (complex, struct, cell, ...): skipped, and named in the reader's message when it
-  was asked for.
+* complex values, structs, cells and sparse matrices: read past (a struct's fields and a cell's
+  elements are not variables of the file); anything else is passed over.
 
 Values are numbers as C's strtod reads them, plus Inf, -Inf, NaN and NA.
 """
@@ -97,7 +97,51 @@ def _variable(kind: str, lines: _Lines) -> np.ndarray | None:
         base, limit, step = lines.numbers()[:3]
         count = int(np.floor((limit - base) / step + 1e-10)) + 1 if step else 1
         return (base + step * np.arange(max(count, 0))).reshape(1, -1)
+    _skip(kind, lines)
     return None
+
+
+def _skip(kind: str, lines: _Lines) -> None:
+    """Read past a value of a type we do not import, nested values included, so a struct's
+    fields are not taken for variables; an unknown type is left for the scan to pass over."""
+    if kind in ("scalar struct", "struct"):
+        lines.field("ndims")
+        lines.next()  # the sizes
+        _skip_elements(lines, lines.field("length"))
+    elif kind == "cell":
+        head = lines.next()
+        if head.startswith("# ndims:"):
+            count = int(np.prod([int(v) for v in lines.next().split()]))
+        else:
+            lines.at -= 1
+            count = lines.field("rows") * lines.field("columns")
+        _skip_elements(lines, count)
+    elif kind == "complex scalar":
+        lines.next()
+    elif kind == "complex matrix":
+        head = lines.next()
+        if head.startswith("# ndims:"):
+            count = int(np.prod([int(v) for v in lines.next().split()]))
+        else:
+            lines.at -= 1
+            count = lines.field("rows")
+            lines.field("columns")
+        for _ in range(count):
+            lines.next()
+    elif kind in ("sparse matrix", "sparse bool matrix", "sparse complex matrix"):
+        count = lines.field("nnz")
+        lines.field("rows")
+        lines.field("columns")
+        for _ in range(count):
+            lines.next()
+
+
+def _skip_elements(lines: _Lines, count: int) -> None:
+    """Read past `count` nested "# name:" / "# type:" values."""
+    for _ in range(count):
+        lines.next()  # "# name: ..."
+        kind = lines.next().strip()[len("# type:") :].strip()
+        _variable(kind, lines)
 
 
 def load(path: Path) -> dict[str, np.ndarray]:

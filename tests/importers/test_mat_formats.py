@@ -31,6 +31,20 @@ def test_octave_text_format(tmp_path):
     np.testing.assert_array_equal(tile.data, VALUES)
 
 
+def test_octave_text_skips_structs_cells_and_complex_values(tmp_path):
+    path = tmp_path / "s.mat"
+    path.write_text(
+        "# Created by Octave 8.4.0\n"
+        "# name: shape\n# type: matrix\n# rows: 4\n# columns: 1\n 0.5\n -0.25\n 1\n 0.125\n\n\n"
+        "# name: settings\n# type: scalar struct\n# ndims: 2\n 1 1\n# length: 2\n"
+        "# name: shape\n# type: matrix\n# rows: 1\n# columns: 2\n 9 9\n\n\n"
+        "# name: names\n# type: cell\n# rows: 1\n# columns: 1\n"
+        "# name: <cell-element>\n# type: sq_string\n# elements: 1\n# length: 1\nx\n\n\n\n\n"
+        "# name: z\n# type: complex matrix\n# rows: 1\n# columns: 2\n (1,2) (3,4)\n"
+    )
+    np.testing.assert_array_equal(_read(path, rate=100).data, VALUES)
+
+
 def test_octave_text_row_vector_and_range(tmp_path):
     path = tmp_path / "r.mat"
     path.write_text(
