@@ -11,8 +11,9 @@ ALIKE are listed as too alike to be told apart reliably.
   RHYTHM_EVENT JNDs for each event one icon has and the other lacks;
 * envelope: the 90th percentile of the point-by-point |difference| of the two dB envelopes (each
   on its own time base, floored at FLOOR_DB = -80 dB re 1 N*m or full scale, a fixed level
-  under the detection threshold, so a pair's distance is the same in any set) / 2.2 dB (amplitude JND, Israr,
-  Tan & Reed 2006): a change to one event of five counts in full, a few points of edges do not;
+  under the detection threshold, so a pair's distance is the same in any set) / 2.2 dB
+  (amplitude JND, Israr, Tan & Reed 2006): a change to one event of five counts in full, a few
+  points of edges do not;
 * frequency: |ln(fa/fb)| / ln(1 + 0.18) (Weber fraction 0.18, same source);
 * roughness: |difference| / 2.2 dB (it is a level fluctuation);
 * force: per layer, the 90th percentile of the |difference| of the two profiles relative to the
