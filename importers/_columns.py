@@ -9,7 +9,7 @@ import numpy as np
 from timeline.plugins.file_formats import FormatError, Imported, Placement
 from timeline.tiles import SampledTile, Tile
 
-AXIS_NAMES = ("time", "t", "time_s", "seconds", "angle", "theta", "position")
+AXIS_NAMES = ("time", "t", "time_s", "seconds", "angle", "angle_deg", "theta", "position")
 RATE_NAMES = ("rate", "fs", "sample_rate", "samplerate", "sr")
 UNIFORM_TOLERANCE = 1e-6  # relative spread allowed in a time column's steps
 

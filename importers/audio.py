@@ -6,6 +6,12 @@ value is a float32 exactly (16- and 24-bit PCM, float files, a stereo mix of PCM
 halves an hour's memory and reads back the same float64 values, else float64. Each block is
 hashed for the tile's content key as it arrives, integer PCM needs no finiteness scan, and
 progress is reported per block.
+
+A project's layers are written one channel each, with the units line of importers/_units.py in
+the file's comment (WAV's LIST/INFO ICMT chunk, FLAC's and OGG's Vorbis comment, AIFF's and
+CAF's own): read back, each channel goes on a track of its kind at its values (float32 precision
+in the default FLOAT subtype; bit for bit with subtype DOUBLE). A file without that comment is a
+recording: a unitless shape, and the import says so.
 """
 
 from __future__ import annotations
@@ -17,8 +23,9 @@ from typing import Any
 import numpy as np
 import soundfile as sf
 
+from importers import _units
 from importers._sample_store import SampleStore
-from timeline.plugins.file_formats import FormatError, Layers, Progress
+from timeline.plugins.file_formats import FormatError, Imported, Layers, Progress
 from timeline.signal.samples import first_non_finite
 from timeline.tiles import MAX_TILE_SAMPLES, SampledTile
 
@@ -124,16 +131,43 @@ class AudioFormat:
         progress: Progress | None = None,
         channel: int | str | None = None,
         **options: Any,
-    ) -> SampledTile:
-        """Read one channel (1-based) or the mean of all channels ("mix", the default) as a tile."""
+    ) -> SampledTile | Imported:
+        """Read one channel (1-based) or the mean of all channels ("mix", the default) as a tile;
+        a file of our layers: each channel (or the one asked for) on a track of its kind."""
         path = Path(path)
         with _open(path) as f:
             _check_complete(path, f)
+            units = _units.parse(_comment(f))
+            kinds = list(units.kinds) if units is not None else []
+            if units is not None and len(kinds) == f.channels:
+                return self._read_layers(path, f, units, kinds, channel, progress)
             keep = _channel_index(channel, f.channels, path.name)
             data, key = self._read_blocks(path, f, keep, progress)
             rate = float(f.samplerate)
         suffix = "" if keep is None or f.channels == 1 else f" ch{keep + 1}"
         return SampledTile.from_checked(data, rate, path.stem + suffix, str(path), key)
+
+    def _read_layers(
+        self,
+        path: Path,
+        f: sf.SoundFile,
+        units: _units.Units,
+        kinds: list[str],
+        channel: int | str | None,
+        progress: Progress | None,
+    ) -> Imported:
+        """Our layers: channel i holds the i-th kind of the units line."""
+        wanted = range(f.channels) if channel in (None, "mix") else None
+        if wanted is None:
+            index = _channel_index(channel, f.channels, path.name)
+            wanted = range(index, index + 1) if index is not None else range(f.channels)
+        columns = []
+        for index in wanted:
+            f.seek(0)
+            data, _ = self._read_blocks(path, f, index, progress)
+            columns.append((kinds[index], np.asarray(data, dtype=np.float64)))
+        rate = units.rate if units.rate is not None else float(f.samplerate)
+        return _units.kind_placements(columns, units, rate, 0.0, path.stem, str(path))
 
     @staticmethod
     def _read_blocks(
@@ -215,10 +249,22 @@ class AudioFormat:
             )
         if rate != int(rate) or rate < 1:
             raise FormatError(f"audio files need a whole-number rate, not {rate} Hz")
+        units = _units.describe(list(source.columns), source.axis, rate)
         try:
-            sf.write(path, frames, int(rate), subtype=subtype, format=container)
+            with sf.SoundFile(path, "w", int(rate), len(columns), subtype, format=container) as out:
+                if units is not None:
+                    out.comment = units
+                out.write(frames)
         except (sf.LibsndfileError, ValueError, TypeError) as exc:
             raise FormatError(f"cannot write {container} audio as {subtype} ({exc})") from None
+
+
+def _comment(f: sf.SoundFile) -> str:
+    """The file's comment text ("" when it has none or its format holds none)."""
+    try:
+        return str(f.comment or "")
+    except (sf.LibsndfileError, RuntimeError, AttributeError):
+        return ""
 
 
 def _container(path: Path) -> str:

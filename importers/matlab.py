@@ -1,7 +1,11 @@
-"""Matlab .mat files (v4 to v7) through scipy.io: a vector and its rate, or named layers and time.
+"""Named-array files: Matlab .mat (v4 to v7 through scipy.io; v7.3 and Octave `-hdf5` through
+h5py; Octave's default text format) and NumPy .npz: a vector and its rate, or named layers.
 
-We write `rate`, `time` and one column vector per layer (a tile's samples are called `value`),
-so in Matlab `plot(time, drive)` works; a user edits the vectors and saves with `save(..., '-v7')`.
+We write `rate`, `time` (or `angle_deg`, in degrees, on a position project: `rate` is then per
+degree) and one column vector per layer (a tile's samples are called `value`), so in Matlab
+`plot(time, drive)` works; a project's layers add `units`, the units line of importers/_units.py,
+so an import puts each layer back on a track of its kind at its values. A user edits the vectors
+and saves with any of Matlab's or Octave's formats.
 """
 
 from __future__ import annotations
@@ -12,6 +16,7 @@ from typing import Any
 import numpy as np
 import scipy.io
 
+from importers import _mat_hdf5, _mat_octave_text, _units
 from importers._columns import (
     AXIS_NAMES,
     RATE_NAMES,
@@ -28,14 +33,33 @@ PREFERRED = ("value", "data", "drive")
 
 
 def _load(path: Path) -> dict[str, Any]:
-    """The file's variables, parsed in a child process (a damaged file can crash scipy)."""
-    with path.open("rb") as f:
-        if f.read(128)[:19] == b"MATLAB 7.3 MAT-file":
-            raise FormatError(f"{path.name} is a Matlab v7.3 (HDF5) file: save it with -v7")
+    """The file's variables, parsed in a child process (a damaged file can crash scipy or HDF5)."""
+    if path.suffix.lower() == ".npz":
+        return _load_npz(path)
     return crash_isolation.run(_parse, path, what=path.name)
 
 
+def _load_npz(path: Path) -> dict[str, Any]:
+    try:
+        with np.load(path, allow_pickle=False) as archive:
+            return {k: archive[k] for k in archive.files}
+    except (OSError, ValueError, EOFError) as exc:
+        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise FormatError(f"{path.name} is not a readable .npz file ({detail[:120]})") from None
+
+
 def _parse(path: Path) -> dict[str, Any]:
+    with path.open("rb") as f:
+        head = f.read(1024)
+    if _mat_hdf5.is_hdf5(head):
+        try:
+            return _mat_hdf5.load(path)
+        except OSError as exc:
+            raise FormatError(f"{path.name} is not a readable HDF5 .mat file ({exc})") from None
+    if head.startswith(_mat_hdf5.MATLAB_73):
+        raise FormatError(f"{path.name} says it is a Matlab v7.3 file but holds no HDF5 data")
+    if _mat_octave_text.is_octave_text(head):
+        return _mat_octave_text.load(path)
     try:
         contents = scipy.io.loadmat(path, squeeze_me=False, mat_dtype=False)
     except Exception as exc:  # scipy's parser raises many types on malformed input
@@ -57,7 +81,7 @@ class MatlabFormat:
     """Matlab .mat: a tile from one vector; layers written as named vectors with time and rate."""
 
     name = "mat"
-    extensions = (".mat",)
+    extensions = (".mat", ".npz")
     reads = "tile"
     writes = "layers"
     options = ("column", "rate")
@@ -74,18 +98,29 @@ class MatlabFormat:
         """Read the chosen (or first value-like) vector as a tile, with the file's rate or time."""
         path = Path(path)
         variables = _load(path)
-        name = self._choose(variables, column, path.name)
+        units = _units_of(variables)
+        name = self._choose(variables, column, path.name, units)
         values = finite_values(_numeric_vector(variables[name]), f"{name} in {path.name}")
         file_rate, start = self._rate(variables, len(values), path.name)
+        if units is not None and units.rate is not None:
+            file_rate = units.rate  # exact: a per-degree rate is a rounded one
         chosen = file_rate or rate
         if chosen is None:
             raise FormatError(f"{path.name} has no rate or time variable: give its rate")
         if progress is not None:
             progress(1.0)
-        return placed_tile(values, chosen, start, f"{path.stem} {name}", str(path))
+        if units is not None and name in units.kinds:
+            names = [name] if column is not None else [k for k in variables if k in units.kinds]
+            columns = [(k, finite_values(_numeric_vector(variables[k]), f"{k} in {path.name}"))
+                       for k in names]  # fmt: skip
+            return _units.kind_placements(columns, units, chosen, start, path.stem, str(path))
+        tile = placed_tile(values, chosen, start, f"{path.stem} {name}", str(path))
+        return _units.as_shape(tile, path.name)
 
     @staticmethod
-    def _choose(variables: dict[str, Any], column: str | None, filename: str) -> str:
+    def _choose(
+        variables: dict[str, Any], column: str | None, filename: str, units: _units.Units | None
+    ) -> str:
         vectors = [k for k, v in variables.items() if _numeric_vector(v) is not None]
         if column is not None:
             if column not in variables:
@@ -97,6 +132,8 @@ class MatlabFormat:
                 raise FormatError(f"{column} in {filename} is not a real numeric vector")
             return column
         values = [k for k in vectors if k.lower() not in AXIS_NAMES + RATE_NAMES]
+        if units is not None and any(k in units.kinds for k in values):
+            return next(k for k in values if k in units.kinds)
         for k in PREFERRED:
             if k in values:
                 return k
@@ -122,22 +159,43 @@ class MatlabFormat:
                 axis = finite_values(axis, f"{key} in {filename}")
                 if rate is None and n > 1:
                     rate = rate_from_axis(axis, filename)
+                if key == _units.ANGLE_DEG:  # degrees in the file, radians on the timeline
+                    per_rad = None if rate is None else rate * 180.0 / np.pi
+                    return per_rad, float(np.radians(axis[0]))
                 return rate, float(axis[0])
         return rate, 0.0
 
     def write(self, source: Layers, path: Path, **options: Any) -> None:
-        """Column vectors per layer, plus `time` (or `angle`) and `rate`, in a v5 .mat file."""
-        axis_name = "time" if source.axis == "time" else "angle"
+        """Column vectors per layer, plus `time` (or `angle_deg`), `rate` and, for a project's
+        layers, `units`: a compressed v5 .mat file, or a .npz archive."""
         n = source.length
+        axis = _units.axis_values(source.axis, source.start, source.rate, n)
         arrays: dict[str, Any] = {
-            axis_name: (source.start + np.arange(n) / source.rate).reshape(-1, 1),
-            "rate": np.float64(source.rate),
+            _units.axis_column(source.axis): axis.reshape(-1, 1),
+            "rate": np.float64(_units.file_rate(source.axis, source.rate)),
         }
         for key, col in source.columns.items():
             full = np.zeros(n)
             full[: len(col)] = col
             arrays[key] = full.reshape(-1, 1)
+        units = _units.describe(list(source.columns), source.axis, source.rate)
+        if units is not None:
+            arrays["units"] = np.array(units)
+        if Path(path).suffix.lower() == ".npz":
+            with open(path, "wb") as f:
+                np.savez(f, **{k: np.asarray(v).reshape(-1) if np.ndim(v) == 2 else v
+                               for k, v in arrays.items()})  # fmt: skip
+            return
         scipy.io.savemat(Path(path), arrays, do_compression=True, oned_as="column")
+
+
+def _units_of(variables: dict[str, Any]) -> _units.Units | None:
+    """The units line a `units` text variable holds, if any."""
+    value = variables.get("units")
+    if not isinstance(value, np.ndarray) or value.dtype.kind not in "US":
+        return None
+    text = "".join(str(v) for v in value.reshape(-1))
+    return _units.parse(text)
 
 
 FORMAT = MatlabFormat()

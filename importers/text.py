@@ -3,6 +3,10 @@
 Comment lines start with #, % or //. A header is the first line with a word in it, or (the
 Matlab-friendly .txt we write) the last comment line just before the data with one name per
 column. Columns are separated by commas, tabs, semicolons or spaces.
+
+A project's rendered layers end with a units line (importers/_units.py): re-imported, each column
+goes back on a track of its kind at the values written. A position project's axis column is
+`angle_deg`, in degrees; older files' `angle` column is read in radians, as they wrote it.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from importers import _units
 from importers._columns import (
     AXIS_NAMES,
     finite_values,
@@ -159,7 +164,9 @@ class TextFormat:
     ) -> Tile | Imported:
         """Read one column as a sampled tile; its rate from the time column, a comment or `rate`."""
         path = Path(path)
-        table = Table(_decode(path), path.name)
+        text = _decode(path)
+        table = Table(text, path.name)
+        units = _units.parse(text)
         with_axis = table.has_axis_column()
         index = table.column(column, 1 if with_axis else 0)
         values = finite_values(table.values[:, index], path.name)
@@ -168,17 +175,29 @@ class TextFormat:
             if index == 0:
                 raise FormatError(f"column 1 of {path.name} is its time axis, not a value column")
             axis = finite_values(table.values[:, 0], path.name)
-            start = float(axis[0])
+            degrees = bool(table.names) and table.names[0].strip().lower() == _units.ANGLE_DEG
             file_rate = table.rate or (rate_from_axis(axis, path.name) if len(axis) > 1 else None)
+            if degrees:  # samples per degree in the file, per radian on the timeline
+                axis = np.radians(axis)
+                file_rate = None if file_rate is None else file_rate * 180.0 / np.pi
+            start = float(axis[0])
         else:
             file_rate = table.rate
+        if units is not None and units.rate is not None:
+            file_rate = units.rate  # exact, where the axis column gives it to a few ulps
         chosen = file_rate or rate
         if chosen is None:
             raise FormatError(f"{path.name} has no time column: give its rate")
         if progress is not None:
             progress(1.0)
         label = table.names[index] if table.names else f"column {index + 1}"
-        return placed_tile(values, chosen, start, f"{path.stem} {label}", str(path))
+        if units is not None and label in units.kinds:
+            names = [label] if column is not None else [n for n in table.names if n in units.kinds]
+            columns = [(n, finite_values(table.values[:, table.names.index(n)], path.name))
+                       for n in names]  # fmt: skip
+            return _units.kind_placements(columns, units, chosen, start, path.stem, str(path))
+        tile = placed_tile(values, chosen, start, f"{path.stem} {label}", str(path))
+        return _units.as_shape(tile, path.name)
 
     def write(self, source: Layers, path: Path, **options: Any) -> None:
         """A time column then one column per layer, 17 significant digits (exact round trip).
@@ -187,25 +206,26 @@ class TextFormat:
         a % comment, so Matlab's `load` reads it as a plain matrix.
         """
         path = Path(path)
-        axis_name = "time" if source.axis == "time" else "angle"
-        names = [axis_name, *source.columns]
+        names = [_units.axis_column(source.axis), *source.columns]
         table = np.zeros((source.length, len(names)))
-        table[:, 0] = source.start + np.arange(source.length) / source.rate
+        table[:, 0] = _units.axis_values(source.axis, source.start, source.rate, source.length)
         for i, col in enumerate(source.columns.values(), start=1):
             table[: len(col), i] = col
         if path.suffix.lower() == ".csv":
             header, delimiter, comments = ",".join(names), ",", ""
         else:
             header, delimiter, comments = "\t".join(names), "\t", "% "
-        footer = ""
-        if not _axis_gives_rate(table[:, 0], source.rate):
-            # last, so the header stays the first line for pandas, numpy and readmatrix
-            footer = f"{'' if comments else '# '}rate={source.rate!r}"
+        rate = _units.file_rate(source.axis, source.rate)
+        # after the rows, so the header stays the first line for pandas, numpy and readmatrix
+        units = _units.describe(list(source.columns), source.axis, source.rate)
+        footer = [] if units is None else [units]
+        if not _axis_gives_rate(table[:, 0], rate):
+            footer.append(f"rate={rate!r}")
         with open(path, "w", encoding="utf-8", newline="") as f:
             f.write(f"{comments}{header}\n")
             f.writelines(_rows(table, delimiter))
-            if footer:
-                f.write(f"{comments}{footer}\n")
+            for line in footer:
+                f.write(f"{comments or '# '}{line}\n")
 
 
 def _rows(table: np.ndarray, delimiter: str) -> Iterator[str]:

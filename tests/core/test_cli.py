@@ -28,7 +28,7 @@ def test_render_csv_has_the_axis_then_one_column_per_layer(tmp_path, capsys):
 def test_render_position_project_uses_an_angle_column(tmp_path):
     out = tmp_path / "fan.csv"
     assert main(["render", str(PROJECTS / "fan_knob.htl"), "-o", str(out), "--rate", "100"]) == 0
-    assert out.read_text().splitlines()[0] == "angle,torque,damping,mass"
+    assert out.read_text().splitlines()[0] == "angle_deg,torque,damping,mass"  # issue 22.1
 
 
 def test_render_npz_and_wav_with_range_rate_and_tracks(tmp_path):
@@ -55,7 +55,7 @@ def test_render_npz_and_wav_with_range_rate_and_tracks(tmp_path):
         == 0
     )
     data = np.load(tmp_path / "r.npz")
-    assert sorted(data.files) == ["rate", "stiffness", "time"]
+    assert sorted(data.files) == ["rate", "stiffness", "time", "units"]  # issue 22.2
     assert len(data["time"]) == 500 and data["time"][0] == 0.5
     np.testing.assert_allclose(data["stiffness"], 0.4 * data["time"] / 2, rtol=1e-12)  # gain 0.4
     assert (

@@ -53,7 +53,7 @@ def _pairwise(measured: list) -> np.ndarray:
     from timeline.similarity.distance import parts
     from timeline.similarity.features import FLOOR_DB
 
-    floor = max(float(f.envelope.max()) for f in measured) + FLOOR_DB
+    floor = FLOOR_DB
     n = len(measured)
     matrix = np.zeros((n, n))
     for i in range(n):

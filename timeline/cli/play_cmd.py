@@ -218,7 +218,12 @@ def plot_telemetry(
         _shade(ax_tau, t, mask, "red", f"flag: {flag.kind}")
     if ax_tau.get_legend_handles_labels()[0]:
         ax_tau.legend(loc="upper right", fontsize=8)
-    ax_energy.plot(t, telemetry.energy * 1e3, color="#34495e", lw=1.0)
+    from timeline.plugins.device_protocol.telemetry import ENERGY_TOLERANCE
+
+    energy = np.where(np.abs(telemetry.energy) <= ENERGY_TOLERANCE, 0.0, telemetry.energy)
+    ax_energy.plot(t, energy * 1e3, color="#34495e", lw=1.0)  # round-off drawn as 0: no 1e-62 axis
+    for ax in axes[: len(layers) + 3]:
+        ax.ticklabel_format(axis="y", useOffset=False)
     ax_energy.axhline(0.0, color="grey", lw=0.5)
     ax_energy.set_ylabel("energy by\ndevice [mJ]")
     time_axes = axes[: len(layers) + 3]

@@ -6,7 +6,7 @@ import argparse
 import math
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from timeline.cli.options import add_range_options, parse_tracks
 from timeline.cli.units import amount, on_axis, rate_on_axis, rate_text
@@ -14,7 +14,6 @@ from timeline.errors import HapticTimelineError
 
 if TYPE_CHECKING:  # numpy and the mixer load when something is rendered, not for --help
     from timeline.model import Project
-    from timeline.plugins.file_formats import Layers
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -23,23 +22,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("-o", "--output", required=True, help="OUT.csv, OUT.wav, OUT.mat or OUT.npz")
     add_range_options(p)
     p.set_defaults(func=run)
-
-
-def _write_npz(layers: Layers, path: Path) -> None:
-    import numpy as np
-
-    from timeline.files.atomic import write_atomically
-
-    axis = "time" if layers.axis == "time" else "angle"
-    positions = layers.start + np.arange(layers.length) / layers.rate
-    arrays: dict[str, Any] = {axis: positions, "rate": np.float64(layers.rate)}
-    arrays.update((k, np.asarray(v)) for k, v in layers.columns.items())
-
-    def write(tmp: Path) -> None:
-        with open(tmp, "wb") as f:
-            np.savez(f, **arrays)
-
-    write_atomically(path, write)
 
 
 def render_range(project: Project, args: argparse.Namespace) -> tuple[float, float, float]:
@@ -84,10 +66,7 @@ def run(args: argparse.Namespace) -> int:
         raise HapticTimelineError("the project has no layers to render (no clips, or all muted)")
     layers = Layers(columns, rate, start, project.axis)
     output = Path(args.output)
-    if output.suffix.lower() == ".npz":
-        _write_npz(layers, output)
-    else:
-        write_layers(layers, output)
+    write_layers(layers, output)
     print(
         f"rendered {', '.join(columns)}: {layers.length} samples, {amount(start, project.axis)} "
         f"to {amount(stop, project.axis)} at {rate_text(rate, project.axis)}, {args.quality} "

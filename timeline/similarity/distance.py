@@ -10,8 +10,10 @@ ALIKE are listed as too alike to be told apart reliably.
 * rhythm: the onsets matched in order, |ln| of each inter-onset interval ratio / ln(1.16), plus
   RHYTHM_EVENT JNDs for each event one icon has and the other lacks;
 * envelope: the 90th percentile of the point-by-point |difference| of the two dB envelopes (each
-  on its own time base, floored 60 dB below the loudest icon) / 2.2 dB (amplitude JND, Israr,
-  Tan & Reed 2006): a change to one event of five counts in full, a few points of edges do not;
+  on its own time base, floored at FLOOR_DB = -80 dB re 1 N*m or full scale, a fixed level
+  under the detection threshold, so a pair's distance is the same in any set) / 2.2 dB
+  (amplitude JND, Israr, Tan & Reed 2006): a change to one event of five counts in full, a few
+  points of edges do not;
 * frequency: |ln(fa/fb)| / ln(1 + 0.18) (Weber fraction 0.18, same source);
 * roughness: |difference| / 2.2 dB (it is a level fluctuation);
 * force: per layer, the 90th percentile of the |difference| of the two profiles relative to the
@@ -71,7 +73,7 @@ def _force(a: Features, b: Features) -> float:
     return math.sqrt(total)
 
 
-def parts(a: Features, b: Features, floor: float = -300.0) -> dict[str, float]:
+def parts(a: Features, b: Features, floor: float = FLOOR_DB) -> dict[str, float]:
     """Each feature's difference between two icons, in JNDs: the formula for one pair, which
     distances() takes for all pairs at once."""
     if a.axis != b.axis:
@@ -192,8 +194,7 @@ def distances(icons: list[Features]) -> tuple[np.ndarray, Parts]:
     parts() gives pair by pair (to float rounding), with each feature taken for all pairs at
     once and the percentiles of a block of pairs from one sort."""
     _check_one_axis(icons)
-    loudest = max((float(f.envelope.max()) for f in icons), default=0.0)
-    floor = loudest + FLOOR_DB
+    floor = FLOOR_DB
     roughness = np.array([f.roughness for f in icons])
     pairs = np.triu_indices(len(icons), 1)
     envelopes = np.maximum(np.array([f.envelope for f in icons]), floor)

@@ -25,7 +25,11 @@ from timeline.limits.frames import FRAME, crossings, frames
 from timeline.limits.thresholds import TEMPORAL_RESOLUTION
 
 SILENT = 1e-9  # of the peak drive: below this a sample is silence
-FLOOR_DB = -60.0  # dB below the icon set's loudest frame counts as nothing
+# An envelope level below this (dB re 1 N*m, or re full scale on a vibrotactile device) counts
+# as nothing, whatever else is compared: 10 dB under the softest drive the default knob's held
+# hand detects (0.40 mN*m peak at 40 Hz, -71 dB RMS: Verrillo's threshold through
+# timeline/limits/skin.py), so a pair's distance does not depend on the rest of the set.
+FLOOR_DB = -80.0
 ENVELOPE_POINTS = 64  # samples of the envelope and force profiles on the icon's own axis
 
 

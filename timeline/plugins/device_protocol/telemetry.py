@@ -85,6 +85,11 @@ def merge_flags(flags: Iterable[StabilityFlag]) -> tuple[StabilityFlag, ...]:
     return tuple(merged)
 
 
+# Net energy (J) at or below this reads as zero: the per-sample sum's round-off (+9.8e-63 J on a
+# held knob), far under the work of 1 mNm over one encoder count (1 mNm x 1.745e-5 rad = 17 nJ).
+ENERGY_TOLERANCE = 1e-9
+
+
 @dataclass(frozen=True, eq=False)
 class Telemetry:
     """What a device reports after playing: per-sample arrays, layers and flags.
@@ -173,14 +178,26 @@ class Telemetry:
             lines += [
                 f"peak torque {self.peak_torque * 1e3:.2f} mNm",
                 f"saturated {self.time_saturated:.4f} s",
-                f"energy injected by the device {self.energy_injected * 1e3:+.4g} mJ"
-                + (" (active)" if self.energy_injected > 0 else " (passive)"),
+                self._energy_line(),
             ]
         lines += [f"flag {f.describe()}" for f in self.flags] or ["no stability flags"]
         lines += [f"warning: {w}" for w in self.warnings]
         if self.lateness is not None:
             lines.append(self.lateness.describe())
         return lines
+
+    def _energy_line(self) -> str:
+        """The net energy, 0 within ENERGY_TOLERANCE; what makes it positive when it is."""
+        energy = self.energy_injected
+        if abs(energy) <= ENERGY_TOLERANCE:
+            return f"energy injected by the device 0 mJ (within {ENERGY_TOLERANCE:g} J: passive)"
+        text = f"energy injected by the device {energy * 1e3:+.4g} mJ"
+        if energy < 0:
+            return text + " (passive)"
+        drive = self.layers.get("d")
+        if drive is not None and np.any(drive):
+            return text + " (active: the drive layer pushes the hand, as a drive does)"
+        return text + " (active: the springs, dampers and masses gave energy back)"
 
     def write_csv(self, path: str, layer_names: dict[str, str] | None = None) -> None:
         """Write time, angle (rad), velocity (rad/s), torque (N*m), then the layers.
