@@ -244,8 +244,8 @@ class AudioFormat:
         if source.axis == "position" and (rate != int(rate) or rate < 1):
             raise FormatError(
                 f"a position project's rate is {rate:g} samples per radian, and audio files need "
-                f"a whole number: export with --rate N (e.g. --rate {max(1, round(rate))}) to "
-                f"write N samples per radian"
+                f"a whole number: export with --rate N/rad (e.g. --rate {max(1, round(rate))}/rad) "
+                f"to write N samples per radian"
             )
         if rate != int(rate) or rate < 1:
             raise FormatError(f"audio files need a whole-number rate, not {rate} Hz")

@@ -45,7 +45,7 @@ def _clips(path: Path, track: str = "torque") -> list:
 def test_info_prints_extent_clips_and_markers_in_degrees(capsys):
     assert main(["info", str(FAN)]) == 0
     out = capsys.readouterr().out
-    assert "(one every 0.01 deg), duration 280 deg" in out
+    assert "100 samples/deg (5729.58 samples/rad), duration 280 deg" in out
     assert "c22: four detents 20 to 260 deg (240 deg)" in out
     assert "markers: Off 50 deg, Lo 110 deg, Med 170 deg, Hi 230 deg" in out
     assert " rad" not in out.replace("samples/rad", "").replace("N*m*s/rad", "")
@@ -62,9 +62,9 @@ def test_render_start_and_stop_are_degrees(tmp_path, capsys):
     out = tmp_path / "fan.csv"
     args = ["render", str(FAN), "-o", str(out), "--start", "50", "--stop", "100", "--rate", "1/deg"]
     assert main(args) == 0
-    assert "50 samples, 50 deg to 100 deg at 57.2958/rad (1/deg)" in capsys.readouterr().err
-    angles = np.loadtxt(out, delimiter=",", skiprows=1)[:, 0]  # the file's own unit: radians
-    assert len(angles) == 50 and angles[0] == pytest.approx(math.radians(50))
+    assert "50 samples, 50 deg to 100 deg at 1/deg" in capsys.readouterr().err
+    angles = np.loadtxt(out, delimiter=",", skiprows=1, comments="#")[:, 0]  # angle_deg
+    assert len(angles) == 50 and angles[0] == pytest.approx(50.0)
     assert main([*args[:4], "--start", "0.8727rad", "--stop", "1.7453rad", "--rate", "1/deg"]) == 0
     assert "50 samples, 50.002 deg to 99.9983 deg" in capsys.readouterr().err
 
@@ -131,7 +131,7 @@ def test_play_origin_is_degrees(monkeypatch, capsys):
 def test_export_rate_per_degree_and_range_tile_names(tmp_path):
     out = tmp_path / "fan.json"
     assert main(["export", str(FAN), "-o", str(out), "--rate", "1/deg"]) == 0
-    assert json.loads(out.read_text())["count"] == 280  # one entry per degree, 0 to 279
+    assert json.loads(out.read_text())["count"] == 281  # one entry per degree, 0 to 280
     project = projectfile.load(FAN)
     detents = next(c.tile_id for t in project.tracks for c in t.clips if c.id == "c22")
     project, tile = tile_shape.range_to_palette(

@@ -70,7 +70,7 @@ def layers():
 @pytest.mark.parametrize("fixed", [False, True])
 def test_the_header_compiles_and_holds_the_rendered_tables(tmp_path, layers, fixed):
     header = tmp_path / "fan_knob.h"
-    args = ["export", str(FAN_KNOB), "-o", str(header), "--rate", repr(PER_DEGREE)]
+    args = ["export", str(FAN_KNOB), "-o", str(header), "--rate", "1"]  # per degree
     assert main(args + (["--fixed-point"] if fixed else [])) == 0
     (count, start, step), *rows = _compile_and_run(tmp_path, header, fixed)
     assert count == layers.length + 1 == 281 and start == 0.0  # 0 to 280 deg, both ends
@@ -127,5 +127,6 @@ def test_the_header_is_named_after_the_file_not_its_temporary(tmp_path):
 
 
 def test_a_position_project_to_wav_explains_its_rate(tmp_path):
-    with pytest.raises(FormatError, match=r"samples per radian.*--rate N \(e\.g\. --rate 5730\)"):
+    said = r"samples per radian.*--rate N/rad \(e\.g\. --rate 5730/rad\)"
+    with pytest.raises(FormatError, match=said):
         exporting.export_project(projectfile.load(FAN_KNOB), tmp_path / "fan.wav")

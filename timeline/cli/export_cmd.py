@@ -34,8 +34,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         type=axis_rate,
         default=None,
         metavar="R",
-        help="sample rate of the written layers: samples per second, or per radian on a "
-        "position project; 1/deg also (default: the project's; firmware tables: one entry "
+        help="sample rate of the written layers: samples per second, or per degree on a "
+        "position project; 5730/rad also (default: the project's; firmware tables: one entry "
         "per degree or per millisecond, end to end); for .otio and .otioz the edit's frame "
         "rate (24, 25, 30, 23.976, ...), for video editors' tools",
     )

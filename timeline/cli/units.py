@@ -2,9 +2,8 @@
 
 A time project speaks seconds; a position project speaks degrees (its axis is radians inside).
 A typed value may name its unit: "0.5s", "250ms", "90deg", "90°", "1.2rad"; a unit of the other
-axis is refused with one sentence. A rate keeps the unit the files and firmware tables use
-(samples per second, or per radian on a position project) and may name its own: "10000/s",
-"1/deg", "5730/rad".
+axis is refused with one sentence. A rate is samples per second, or per degree on a position
+project, and may name its own unit: "10000/s", "1/deg", "5730/rad".
 """
 
 from __future__ import annotations
@@ -100,8 +99,9 @@ def on_axis(typed: Typed, axis: str, option: str, owner: str = "the project's ax
 
 
 def rate_on_axis(typed: Typed, axis: str, option: str = "--rate") -> float:
-    """A typed rate in samples per axis unit (per second, or per radian)."""
-    return _resolve(typed, axis, option, RATE_UNITS, 1.0, "the project's axis")
+    """A typed rate in samples per axis unit (per second, or per radian: typed per degree)."""
+    own = 1.0 if axis == "time" else DEG_PER_RAD
+    return _resolve(typed, axis, option, RATE_UNITS, own, "the project's axis")
 
 
 def amount(x: float, axis: str) -> str:
@@ -112,7 +112,7 @@ def amount(x: float, axis: str) -> str:
 
 
 def rate_text(rate: float, axis: str) -> str:
-    """A sample rate as typed: "10000/s", or "5729.58/rad (100/deg)" on a position axis."""
+    """A sample rate as typed: "10000/s", or "100/deg" on a position axis."""
     if axis == "time":
         return f"{rate:g}/s"
-    return f"{rate:g}/rad ({rate / DEG_PER_RAD:g}/deg)"
+    return f"{rate / DEG_PER_RAD:g}/deg"

@@ -1,8 +1,9 @@
 """A summary of a project: tracks, clips, duration, markers, layers and variants.
 
 Places and lengths on the axis are given as a designer reads them: seconds, or degrees on a
-position project (radians inside); `unit` names which. The rate stays in samples per second or
-per radian (`rate_unit`), the unit files and firmware tables use.
+position project (radians inside); `unit` names which. The JSON rate is in samples per second
+or per radian (`rate_unit`), the unit files and firmware tables use; the text says it per degree
+on a position project, as `--rate` takes it.
 """
 
 from __future__ import annotations
@@ -66,8 +67,8 @@ def describe(project: Project) -> str:
     s = summary(project)
     unit = s["unit"]
     rate = f"{s['rate']:g} {s['rate_unit']}"
-    if s["axis"] == "position":
-        rate += f" (one every {1 / s['rate'] * displayed(1.0, 'position'):.4g} deg)"
+    if s["axis"] == "position":  # per degree, as --rate takes it; the files' own unit after
+        rate = f"{s['rate'] / displayed(1.0, 'position'):.6g} samples/deg ({rate})"
     lines = [
         f"{s['axis']} axis, {rate}, duration {s['duration']:.6g} {unit}",
         f"layers: {', '.join(s['layers']) or 'none'}",
