@@ -30,12 +30,17 @@ def test_bursts_give_emphasis_at_their_onsets() -> None:
 
 
 def test_sensitivity_passes_the_strongest_flux() -> None:
+    """Meta's peak picking (not adaptive): sensitivity is a share of the flux range."""
     x = tone_bursts([0.1, 0.45, 0.8], 150.0, 1.2)
-    every = analyse(x, RATE, AnalysisSettings(sensitivity=100)).emphasis[:, 0]
-    half = analyse(x, RATE, AnalysisSettings(sensitivity=50)).emphasis[:, 0]
+
+    def meta(**kw: float | bool) -> AnalysisSettings:
+        return AnalysisSettings(adaptive=False, peak_window=0.1, **kw)  # type: ignore[arg-type]
+
+    every = analyse(x, RATE, meta(sensitivity=100)).emphasis[:, 0]
+    half = analyse(x, RATE, meta(sensitivity=50)).emphasis[:, 0]
     assert len(every) == 3 and 1 <= len(half) < 3 and set(half) <= set(every)
-    assert len(analyse(x, RATE, AnalysisSettings(sensitivity=0)).emphasis) == 0
-    assert len(analyse(x, RATE, AnalysisSettings(emphasis=False)).emphasis) == 0
+    assert len(analyse(x, RATE, meta(sensitivity=0)).emphasis) == 0
+    assert len(analyse(x, RATE, meta(emphasis=False)).emphasis) == 0
 
 
 def test_release_falls_99_percent_in_its_time() -> None:

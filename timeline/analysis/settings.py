@@ -46,12 +46,17 @@ class AnalysisSettings:
     tolerance: float | None = _setting(
         None, "keep breakpoints within this error of the analysis instead of a count per second"
     )
-    # emphasis: amplitude peaks scored by spectral flux
+    # emphasis: onsets that stand out of the sound around them (or Meta's amplitude peaks)
     emphasis: bool = _setting(True, "mark the sound's hits as emphasis")
-    sensitivity: float = _setting(50.0, "share of the peaks found that get emphasis (%)")
-    peak_window: float = _setting(0.1, "least time between two emphasis points (s)")
-    minimum_rise: float = _setting(0.1, "least amplitude rise into an emphasised peak")
-    plateau: float = _setting(25.0, "how far the amplitude may keep rising after a peak (%)")
+    adaptive: bool = _setting(
+        True, "find hits by how far they stand out of the sound around them (off: Meta's peaks)"
+    )
+    sensitivity: float = _setting(50.0, "how readily a hit gets emphasis: 0 none, 100 most (%)")
+    peak_window: float = _setting(0.03, "least time between two emphasis points (s)")
+    minimum_rise: float = _setting(0.1, "least amplitude rise into a peak (Meta's peaks only)")
+    plateau: float = _setting(
+        25.0, "how far the amplitude may keep rising after a peak (Meta's peaks only, %)"
+    )
     sharpness_min: float = _setting(0.0, "emphasis frequency of the softest hit (0..1)")
     sharpness_max: float = _setting(1.0, "emphasis frequency of the sharpest hit (0..1)")
     ducking: float = _setting(50.0, "amplitude taken from the envelope under an emphasis (%)")
