@@ -19,6 +19,7 @@ import numpy as np
 from timeline import edits
 from timeline.analysis import DEFAULTS, AnalysisSettings, SoundAnalysis
 from timeline.analysis.source import analyse_file, mono_samples
+from timeline.analysis.staging import Staging, stage
 from timeline.edits.sound_track import add_sound
 from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
 from timeline.errors import ConvertError
@@ -35,6 +36,8 @@ class ConvertedSound:
     path: Path
     analysis: SoundAnalysis
     sound: np.ndarray | None
+    gain_db: float = 0.0  # the gain staging applied to the design (timeline.analysis.staging)
+    notes: tuple[str, ...] = ()  # what staging did or left for the user to decide
 
 
 def design_of_analysis(analysis: SoundAnalysis) -> VibrationDesign:
@@ -53,21 +56,27 @@ def analyse_sound_file(
     *,
     keep_sound: bool = True,
     progress: Callable[[float], None] | None = None,
+    staging: Staging | None = None,
 ) -> ConvertedSound:
     """Analyse a sound file; with `keep_sound` also read it (mono) for an audio track.
 
     `progress` hears the fraction analysed; it may raise to stop (the editor's Cancel).
+    `staging` sets the design's level for a device (none: the sound's own level).
     """
     path = Path(path)
     analysis = analyse_file(path, settings, progress)
+    gain_db, notes = 0.0, ()
+    if staging is not None:
+        staged = stage(analysis, staging)
+        analysis, gain_db, notes = staged.analysis, staged.gain_db, staged.notes
     if not keep_sound:
-        return ConvertedSound(path, analysis, None)
+        return ConvertedSound(path, analysis, None, gain_db, notes)
     if analysis.duration > MAX_SOUND_SECONDS:
         raise ConvertError(
             f"{path.name} lasts {analysis.duration / 60:.0f} minutes; a project keeps sounds up to "
             f"{MAX_SOUND_SECONDS / 60:.0f} minutes (convert it to .haptic or .ahap instead)"
         )
-    return ConvertedSound(path, analysis, mono_samples(path))
+    return ConvertedSound(path, analysis, mono_samples(path), gain_db, notes)
 
 
 def place_converted(
@@ -94,25 +103,39 @@ def sound_to_project(
     at: float = 0.0,
     keep_sound: bool = True,
     drive_track: str | None = None,
+    staging: Staging | None = None,
 ) -> Project:
     """A project (new, or `project` extended) with the sound's design, and the sound itself."""
-    converted = analyse_sound_file(path, settings, keep_sound=keep_sound)
+    converted = analyse_sound_file(path, settings, keep_sound=keep_sound, staging=staging)
     base = edits.new_project() if project is None else project
     return place_converted(base, converted, at=at, drive_track=drive_track)
 
 
+@dataclass(frozen=True)
+class Written:
+    """What `convert_file` wrote: the project it made, the staging gain (dB) and its notes."""
+
+    project: Project
+    gain_db: float
+    notes: tuple[str, ...]
+
+
 def convert_file(
-    sound: str | os.PathLike, output: str | os.PathLike, settings: AnalysisSettings = DEFAULTS
-) -> Project:
+    sound: str | os.PathLike,
+    output: str | os.PathLike,
+    settings: AnalysisSettings = DEFAULTS,
+    staging: Staging | None = None,
+) -> Written:
     """Analyse `sound` and write the design to `output` (.haptic, .ahap or a .htl project)."""
     from timeline.files import projectfile
     from timeline.files.exporting import export_project
 
     output = Path(output)
-    if output.suffix.lower() in PROJECT_EXTENSIONS:
-        project = sound_to_project(sound, settings)
+    keep = output.suffix.lower() in PROJECT_EXTENSIONS
+    converted = analyse_sound_file(sound, settings, keep_sound=keep, staging=staging)
+    project = place_converted(edits.new_project(), converted)
+    if keep:
         projectfile.save(project, output)
     else:
-        project = sound_to_project(sound, settings, keep_sound=False)
         export_project(project, output)
-    return project
+    return Written(project, converted.gain_db, converted.notes)
