@@ -180,7 +180,22 @@ def emphasis(
         peaks, score = peaks[chosen], score[chosen]
     relative = (score - lo) / (hi - lo) if hi > lo else np.full(len(score), 0.5)
     freq = settings.sharpness_min + relative * (settings.sharpness_max - settings.sharpness_min)
+    t, a, peaks = _undipped_after(t, a, peaks, settings.update)
     amp = a[peaks].copy()
-    a = a.copy()
     a[peaks] *= 1.0 - settings.ducking / 100.0
     return t, a, peaks, amp, freq
+
+
+def _undipped_after(
+    t: np.ndarray, a: np.ndarray, peaks: np.ndarray, update: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(t, a, peaks) with a breakpoint one `update` after each peak whose next one is further
+    away, so ducking the peak dips the envelope there and not along a whole reduced segment."""
+    times = t[peaks]
+    following = np.append(t, np.inf)[peaks + 1]
+    lonely = (following - times > 1.5 * update) & (times + update < t[-1])
+    if lonely.any():
+        t, a = _insert(t, a, times[lonely] + update)
+    else:
+        a = a.copy()
+    return t, a, np.searchsorted(t, times)

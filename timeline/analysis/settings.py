@@ -13,6 +13,8 @@ from typing import Any
 
 from timeline.errors import SettingsError
 
+SLACK_AT_ZERO = 0.1  # the error a resolution of 0 % allows (it falls with the square of 1 - %)
+
 
 def _setting(default: Any, help: str) -> Any:
     return field(default=default, metadata={"help": help})
@@ -43,6 +45,11 @@ class AnalysisSettings:
     amplitude_points_per_second: int = _setting(60, "most amplitude breakpoints kept per second")
     frequency_points_per_second: int = _setting(60, "most frequency breakpoints kept per second")
     minimum_score: float = _setting(1e-8, "least change (value x s) a breakpoint must carry")
+    resolution: float = _setting(
+        50.0,
+        "how closely breakpoints follow the analysis: 100 all the budget allows, less "
+        "drops points within a larger error (%)",
+    )
     tolerance: float | None = _setting(
         None, "keep breakpoints within this error of the analysis instead of a count per second"
     )
@@ -86,7 +93,7 @@ class AnalysisSettings:
                 raise SettingsError(f"the analysis setting {name} must be at least 2")
         if self.tolerance is not None and not 0 < self.tolerance <= 1:
             raise SettingsError("the analysis setting tolerance must be above 0 and at most 1")
-        for name in ("sensitivity", "plateau", "ducking"):
+        for name in ("sensitivity", "plateau", "ducking", "resolution"):
             if not 0 <= getattr(self, name) <= 100:
                 raise SettingsError(f"the analysis setting {name} is a percentage (0 to 100)")
         for name in ("output_min", "output_max", "sharpness_min", "sharpness_max"):
@@ -97,6 +104,11 @@ class AnalysisSettings:
     def help(name: str) -> str:
         """What a setting does, in the user's words (for options and the editor's panel)."""
         return next(f.metadata["help"] for f in fields(AnalysisSettings) if f.name == name)
+
+    @property
+    def slack(self) -> float:
+        """The error (0..1 of full scale) `resolution` lets breakpoint reduction add."""
+        return SLACK_AT_ZERO * (1.0 - self.resolution / 100.0) ** 2
 
     @property
     def hop(self) -> int:

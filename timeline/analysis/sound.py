@@ -120,12 +120,15 @@ def analyse_blocks(
     )
     spectrum = SpectrumFrames.create(rate, settings, level.peak * level.gain)
     events = _AmplitudeEvents(rate, settings.update, length)
+    # the resolution's error is relative to the sound's peak: a quiet sound keeps its shape too
     amp = RegionReducer(
-        settings.amplitude_points_per_second, settings.minimum_score, settings.tolerance
-    )
+        settings.amplitude_points_per_second, settings.minimum_score, settings.tolerance,
+        settings.slack * min(1.0, level.peak * level.gain),
+    )  # fmt: skip
     freq = RegionReducer(
-        settings.frequency_points_per_second, settings.minimum_score, settings.tolerance
-    )
+        settings.frequency_points_per_second, settings.minimum_score, settings.tolerance,
+        settings.slack,
+    )  # fmt: skip
     frame_t: list[np.ndarray] = []
     frame_f: list[Features] = []
 
