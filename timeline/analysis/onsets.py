@@ -5,7 +5,8 @@ frequency bin's log-compressed magnitude since the previous spectrum frame, spec
 local maximum (within +-`LOCAL_MAXIMUM` s) that stands out of the sound around it: above the
 median of the onset strength over +-`CONTEXT` s by `spread` times its median absolute deviation
 there, above a floor that is a share of the sound's strongest onset, and where the frame power
-rises by at least `RISE_DB` across the onset (a transient, not a wobble of a steady sound). Both
+rises by at least `RISE_DB` across the onset (a transient, not a wobble of a steady sound) to
+within `GATE_DB` of the sound's loudest frame (not a hiss between the sound's events). Both
 the spread and the floor fall as `sensitivity` rises, so the control spans from the sound's
 strongest hit alone (near 0 %) to every transient that stands out of its surroundings (100 %);
 between, how many hits a second depends on the sound itself: a rattle gets many, a single
@@ -43,6 +44,7 @@ SPREAD = (1.0, 24.0)  # deviations above the local median at 100 % and 0 % sensi
 FLOOR = (0.05, 1.0)  # share of the strongest onset at 100 % and 0 % sensitivity
 GAP_MAX = 1.0  # s: least time between hits near 0 % sensitivity (peak_window at 100 %)
 RISE_DB = 1.0  # least rise of frame power across an onset (dB)
+GATE_DB = -40.0  # least frame power after an onset, relative to the sound's loudest frame (dB)
 RISE_SPAN = 0.02  # s: power compared this far before and after the onset frame
 SNAP_BEFORE = 0.005  # s: an emphasis goes on the highest breakpoint from this before the onset
 SNAP_AFTER = 0.02  # s: ... to this and half a spectrum frame after it
@@ -107,6 +109,7 @@ def onset_frames(frames: Frames, settings: AnalysisSettings) -> np.ndarray:
     before = power[np.maximum(index - span, 0)]
     after = maximum_filter1d(power, span + 1, origin=-(span // 2), mode="nearest")
     rises = 10.0 * np.log10(after / before) >= RISE_DB
+    rises &= after >= power.max() * 10.0 ** (GATE_DB / 10.0)
     found = np.flatnonzero((strength >= local) & (strength > threshold) & rises)
     return _spaced(found, strength[found], times[found], hit_gap(settings))
 
