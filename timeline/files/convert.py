@@ -21,7 +21,13 @@ from timeline.analysis import DEFAULTS, AnalysisSettings, SoundAnalysis
 from timeline.analysis.source import analyse_file, mono_samples
 from timeline.analysis.staging import Staging, stage
 from timeline.edits.sound_track import add_sound
-from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
+from timeline.edits.vibration import (
+    Emphasis,
+    VibrationDesign,
+    emphasis_of,
+    place_design,
+    place_design_clip,
+)
 from timeline.errors import ConvertError
 from timeline.model import Project
 
@@ -93,6 +99,23 @@ def place_converted(
     return place_design(
         project, design, at=at, track_id=drive_track, name=path.stem, source=path.name
     )
+
+
+def reanalysed(project: Project, clip_id: str, analysis: SoundAnalysis) -> tuple[Project, str]:
+    """A converted design's clip and its emphasis replaced by a new analysis of the same sound,
+    at the clip's start, on its track, with its gain; every other clip is left as it was.
+    Returns the project and the new design clip's id."""
+    track, clip = project.find_clip(clip_id)
+    tile = project.tile(clip.tile_id)
+    name, source = getattr(tile, "name", "vibration"), getattr(tile, "source", "")
+    project = edits.remove_clips(project, [clip_id, *emphasis_of(project, clip_id)])
+    project, new = place_design_clip(
+        project, design_of_analysis(analysis), at=clip.start, track_id=track.id, name=name,
+        source=source,
+    )  # fmt: skip
+    if clip.gain != 1.0:
+        project = edits.set_clip(project, new, gain=clip.gain)
+    return project, new
 
 
 def sound_to_project(
