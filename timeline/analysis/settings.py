@@ -1,8 +1,11 @@
-"""The settings of the sound-to-haptic analysis, with Meta Haptics Studio's defaults.
+"""The settings of the sound-to-haptic analysis.
 
 Every field is a setting of `haptic-timeline convert` and of the editor's analysis panel. The
-defaults are those of Meta Haptics Studio's open analysis (facebook/meta-haptics-sdk,
-interfaces/studio/audio_analysis), so a design made here starts where Studio's would.
+envelope and spectrum defaults are those of Meta Haptics Studio's open analysis
+(facebook/meta-haptics-sdk, interfaces/studio/audio_analysis), so envelopes start where Studio's
+would. Four differ, each said in docs/convert.md: emphasis found adaptively (`adaptive`, with
+`peak_window` 30 ms; off with peak_window 0.1 s gives Studio's peak picking), `resolution` 50 %
+(100 %: Studio's breakpoint budget alone), and `ducking` 20 % (Lofelt Studio's; Meta's is 50 %).
 """
 
 from __future__ import annotations
@@ -66,7 +69,7 @@ class AnalysisSettings:
     )
     sharpness_min: float = _setting(0.0, "emphasis frequency of the softest hit (0..1)")
     sharpness_max: float = _setting(1.0, "emphasis frequency of the sharpest hit (0..1)")
-    ducking: float = _setting(50.0, "amplitude taken from the envelope under an emphasis (%)")
+    ducking: float = _setting(20.0, "amplitude taken from the envelope under an emphasis (%)")
 
     def __post_init__(self) -> None:
         for f in fields(self):

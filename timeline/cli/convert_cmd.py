@@ -45,7 +45,7 @@ def _gain(text: str) -> float | None:
 
 def add_settings_options(p: argparse.ArgumentParser) -> None:
     """One option per analysis setting (--attack, --sensitivity, --no-emphasis, ...)."""
-    group = p.add_argument_group("analysis settings (defaults: Meta Haptics Studio's)")
+    group = p.add_argument_group("analysis settings (docs/convert.md)")
     for f in fields(AnalysisSettings):
         flag = "--" + f.name.replace("_", "-")
         help_text = f"{AnalysisSettings.help(f.name)} (default: {f.default})".replace("%", "%%")

@@ -1,12 +1,11 @@
 """File > Import sound as haptic: a sound analysed into an editable design, its settings panel.
 
-The panel (a dock beside the timeline) holds every analysis setting, starting at Meta Haptics
-Studio's defaults. Importing analyses the sound off the GUI thread; when done, the design goes
-on a drive track (the selected clip's or the lane under the pointer, if a drive lane, else the
-first) as envelope breakpoints and emphasis, and the sound itself on a new audio track at the same
-time: one undo step. Like any import, the new clips move later together to the first gap where
-they cover no clip already there. Dropping sound files with Alt held does the same at the drop
-point.
+The panel (a dock beside the timeline) holds every analysis setting, starting at its default.
+Importing analyses the sound off the GUI thread; when done, the design goes on a drive track
+(the selected clip's or the lane under the pointer, if a drive lane, else the first) as envelope
+breakpoints and emphasis, and the sound itself on a new audio track at the same time: one undo
+step. Like any import, the new clips move later together to the first gap where they cover no
+clip already there. Dropping sound files with Alt held does the same at the drop point.
 
 The panel is live: a setting changed (after a pause of LIVE_DELAY_MS) re-analyses the sound of
 the selected converted design, or else of the design imported last, and replaces that design
@@ -127,8 +126,8 @@ class AnalysisPanel(QWidget):
         self.error = QLabel("")
         self.error.setStyleSheet("color: #b00020;")
         self.error.setWordWrap(True)
-        defaults = QPushButton("Studio defaults")
-        defaults.setToolTip("Put every setting back to Meta Haptics Studio's default")
+        defaults = QPushButton("Defaults")
+        defaults.setToolTip("Put every setting back to its default (docs/convert.md)")
         defaults.clicked.connect(self.restore_defaults)
         inner = QWidget()
         inner.setLayout(form)
@@ -161,7 +160,7 @@ class AnalysisPanel(QWidget):
         return number
 
     def restore_defaults(self) -> None:
-        """Meta Haptics Studio's settings in every field."""
+        """The default settings in every field."""
         self.show_settings(DEFAULTS)
 
     def show_settings(self, settings: AnalysisSettings) -> None:
