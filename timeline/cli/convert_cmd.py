@@ -13,7 +13,6 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from collections.abc import Iterator
 from dataclasses import fields
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -26,7 +25,6 @@ if TYPE_CHECKING:  # the analysis, devices and limits load when a sound is conve
 
 SOUND_SUFFIXES = (".wav", ".flac", ".ogg", ".aif", ".aiff", ".mp3", ".opus", ".caf", ".w64")
 OUTPUT_FORMATS = ("haptic", "ahap", "htl")
-SENSATION_DB = 20.0  # dB above the detection threshold where `--gain auto` puts a quiet design
 
 
 def _integer(text: str) -> int:
@@ -95,33 +93,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def staging_for(device: str, actuator: str | None, gain_db: float | None) -> Staging:
-    """The level a design should take on a device: its limit, and the least peak a hand holding
-    it feels clearly (SENSATION_DB above Verrillo's threshold, over the carrier's range), as
-    fractions of the drive's full scale."""
-    import numpy as np
-
-    from timeline.analysis.staging import Staging
-    from timeline.edits.vibration import DRIVE
+    """The level a design should take on the device named (timeline.limits.staging)."""
+    from timeline.limits import staging
     from timeline.limits.actuators import actuator as actuator_named
-    from timeline.limits.skin import displacement_per_unit
-    from timeline.limits.thresholds import detection_threshold
     from timeline.plugins.device_protocol import open_device
-    from timeline.plugins.track_kinds import track_kind
-    from timeline.signal.vibration_design import F_MAX, F_MIN
 
     with open_device(device) as d:
         info = d.info
-    chosen = actuator_named(actuator) if actuator else info.actuator
-    # a drive of 1 is the drive kind's full scale on a knob, the device's full scale otherwise
-    unit = track_kind(DRIVE).full_scale if info.kind == "kinesthetic" else 1.0
-    limit = info.max_output / unit
-    carrier = np.linspace(F_MIN, F_MAX, 16)
-    per_unit = displacement_per_unit(info, chosen, carrier)
-    felt = 0.0
-    if per_unit is not None:
-        needed = detection_threshold(carrier) / (per_unit * unit)
-        felt = float(needed.max()) * 10.0 ** (SENSATION_DB / 20.0)
-    return Staging(limit=limit, felt=felt, gain_db=gain_db, target=info.name)
+    return staging.staging_for(info, actuator_named(actuator) if actuator else None, gain_db)
 
 
 def sounds_in(paths: list[str]) -> list[Path]:
@@ -161,6 +140,8 @@ def run(args: argparse.Namespace) -> int:
     jobs = [(s, out / f"{s.stem}.{args.format}") for s in sounds]
     failed = 0
     bar = Progress(len(jobs)) if sys.stderr.isatty() else None
+    from timeline.files.convert import convert_many
+
     for sound, result in convert_many(jobs, settings, staging, args.jobs or os.cpu_count() or 1):
         if bar is not None:
             bar.step()
@@ -182,35 +163,6 @@ def _say(bar: Progress | None, text: str) -> None:
     print(text, file=sys.stderr)
     if bar is not None:
         bar.draw()
-
-
-def convert_one(
-    sound: Path, output: Path, settings: AnalysisSettings, staging: Staging
-) -> tuple[str, ...] | str:
-    """Worker: convert one sound; its notes, or the one-sentence reason it failed."""
-    from timeline.errors import HapticTimelineError
-    from timeline.files.convert import convert_file
-
-    try:
-        return convert_file(sound, output, settings, staging).notes
-    except (HapticTimelineError, OSError) as exc:
-        return str(exc)
-
-
-def convert_many(
-    jobs: list[tuple[Path, Path]], settings: AnalysisSettings, staging: Staging, workers: int
-) -> Iterator[tuple[Path, tuple[str, ...] | str]]:
-    """Convert (sound, output) pairs over `workers` processes; each result as it finishes."""
-    if workers <= 1 or len(jobs) == 1:
-        for sound, output in jobs:
-            yield sound, convert_one(sound, output, settings, staging)
-        return
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-
-    with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
-        futures = {pool.submit(convert_one, s, o, settings, staging): s for s, o in jobs}
-        for future in as_completed(futures):
-            yield futures[future], future.result()
 
 
 class Progress:

@@ -10,7 +10,7 @@ files hold the design only.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -28,7 +28,7 @@ from timeline.edits.vibration import (
     place_design,
     place_design_clip,
 )
-from timeline.errors import ConvertError
+from timeline.errors import ConvertError, HapticTimelineError
 from timeline.model import Project
 
 MAX_SOUND_SECONDS = 3600.0  # a project keeps the source sound up to an hour long
@@ -162,3 +162,33 @@ def convert_file(
     else:
         export_project(project, output)
     return Written(project, converted.gain_db, converted.notes)
+
+
+def convert_one(
+    sound: Path, output: Path, settings: AnalysisSettings, staging: Staging | None
+) -> tuple[str, ...] | str:
+    """Convert one sound (a worker's job): its staging notes, or the sentence saying why not."""
+    try:
+        return convert_file(sound, output, settings, staging).notes
+    except (HapticTimelineError, OSError) as exc:
+        return str(exc)
+
+
+def convert_many(
+    jobs: list[tuple[Path, Path]],
+    settings: AnalysisSettings,
+    staging: Staging | None,
+    workers: int,
+) -> Iterator[tuple[Path, tuple[str, ...] | str]]:
+    """Convert (sound, output) pairs over `workers` processes (one: in this one), each result
+    as it finishes: its notes, or why it failed."""
+    if workers <= 1 or len(jobs) == 1:
+        for sound, output in jobs:
+            yield sound, convert_one(sound, output, settings, staging)
+        return
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
+        futures = {pool.submit(convert_one, s, o, settings, staging): s for s, o in jobs}
+        for future in as_completed(futures):
+            yield futures[future], future.result()
