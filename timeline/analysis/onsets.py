@@ -16,7 +16,9 @@ reference designs: the constants below are set on synthetic click trains and bur
 
 Each hit is placed on the highest amplitude breakpoint from `SNAP_BEFORE` before the onset frame's
 centre to `SNAP_AFTER` and half a frame after it (a frame sees an attack before its centre
-reaches it; a breakpoint is added at the onset when the reduced envelope has none there).
+reaches it; a breakpoint is added at the onset when the reduced envelope has none there), and a
+breakpoint is added one `update` after it when the next is further, so that ducking dips the
+envelope at the hit and not along a whole reduced segment.
 
 Without `adaptive`, Meta Haptics Studio's peak picking: a breakpoint of the reduced amplitude
 envelope is a peak when it rises more than `minimum_rise` above the breakpoint before it, the
@@ -183,7 +185,10 @@ def emphasis(
         peaks, score = peaks[chosen], score[chosen]
     relative = (score - lo) / (hi - lo) if hi > lo else np.full(len(score), 0.5)
     freq = settings.sharpness_min + relative * (settings.sharpness_max - settings.sharpness_min)
-    t, a, peaks = _undipped_after(t, a, peaks, settings.update)
+    if settings.adaptive:
+        t, a, peaks = _undipped_after(t, a, peaks, settings.update)
+    else:
+        a = a.copy()
     amp = a[peaks].copy()
     a[peaks] *= 1.0 - settings.ducking / 100.0
     return t, a, peaks, amp, freq

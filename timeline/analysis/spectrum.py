@@ -132,9 +132,9 @@ class SpectrumFrames:
         times = (self.seen + ends - self.size / 2.0) / self.rate
         self.seen += len(block)
         half = self.size // 2
-        frames = np.multiply(frames, self.window)  # a fresh array: the view's copy, windowed
+        frames *= self.window  # the fancy index made a copy: windowed in place
         # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array it returns
-        spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1))
+        spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1, overwrite_x=True))
         flux, strength, power, energy, weighted = _features(
             np.abs(spectra), half, self.lowpass_bin, self.compression, self.previous
         )
