@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import soundfile
 from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
 
 from tests.analysis.conftest import tone_bursts
 from timeline import edits
+from timeline.edits.vibration import design_of
 
 RATE = 22_050
 
@@ -25,6 +27,9 @@ def test_a_changed_setting_re_analyses_and_undo_restores(window, qtbot, tmp_path
     win.sound_import.convert_files([path], "", 0.0)
     qtbot.waitUntil(lambda: not win.jobs and "as haptic" in win.messages.text, timeout=20_000)
     assert emphasis_count(win) == 3  # the three bursts, at the default sensitivity
+    # staged for the default device: envelope and emphasis pulses stay within its full scale
+    drive = design_of(win.doc.project).render(np.arange(0.0, 1.2, 1 / 8000))
+    assert 0.9 < np.abs(drive).max() <= 1.0
     # the designer's own edit on another track, made after the import
     audio = next(t for t in win.doc.project.tracks if t.kind == "audio")
     win.doc.replace("audio gain", edits.set_track(win.doc.project, audio.id, gain=0.5))

@@ -16,6 +16,7 @@ designer left it.
 from __future__ import annotations
 
 from dataclasses import fields
+from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -42,6 +43,7 @@ from timeline.errors import HapticTimelineError, SettingsError
 from timeline.gui.file_jobs import FileJob
 
 if TYPE_CHECKING:  # the analysis (numba) loads with the first sound converted, not at start-up
+    from timeline.analysis.staging import Staging
     from timeline.files.convert import ConvertedSound
     from timeline.gui.main_window import MainWindow
 
@@ -89,18 +91,30 @@ LABELS = {
 Field = QCheckBox | QSpinBox | QDoubleSpinBox  # one analysis setting's editor
 
 
+@cache
+def _staging() -> Staging:
+    """The level designs take, as `convert` stages them: for the default device (sim)."""
+    from timeline.limits.staging import staging_for
+    from timeline.plugins.device_protocol import open_device
+
+    with open_device("sim") as device:
+        return staging_for(device.info)
+
+
 def _analyse(path: Path, settings: AnalysisSettings, progress) -> ConvertedSound:  # noqa: ANN001
-    """Worker thread: a sound file's analysis, placed nowhere yet."""
+    """Worker thread: a sound file's analysis at the default device's level, placed nowhere."""
     from timeline.files.convert import analyse_sound_file
 
-    return analyse_sound_file(path, settings, progress=progress)
+    return analyse_sound_file(path, settings, progress=progress, staging=_staging())
 
 
 def _reanalyse(path: Path, settings: AnalysisSettings, progress) -> ConvertedSound:  # noqa: ANN001
     """Worker thread: the sound analysed again, without reading it for an audio track."""
     from timeline.files.convert import analyse_sound_file
 
-    return analyse_sound_file(path, settings, keep_sound=False, progress=progress)
+    return analyse_sound_file(
+        path, settings, keep_sound=False, progress=progress, staging=_staging()
+    )
 
 
 def _label(name: str) -> str:
@@ -286,6 +300,7 @@ class SoundImport(QObject):
         self.window.messages.show_message(
             f"{found.path.name} as haptic: {len(a.amplitude)} amplitude and {len(a.frequency)} "
             f"frequency points, {len(a.emphasis)} emphasis; the sound is on an audio track"
+            + "".join(f"; {note}" for note in found.notes)
         )
 
     def live_target(self) -> tuple[str, Path] | None:
@@ -343,4 +358,5 @@ class SoundImport(QObject):
         self.window.messages.show_message(
             f"{found.path.name} re-analysed: {len(a.amplitude)} amplitude and "
             f"{len(a.frequency)} frequency points, {len(a.emphasis)} emphasis"
+            + "".join(f"; {note}" for note in found.notes)
         )
