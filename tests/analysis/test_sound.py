@@ -30,18 +30,23 @@ def test_bursts_give_emphasis_at_their_onsets() -> None:
 
 
 def test_sensitivity_passes_the_strongest_flux() -> None:
+    """Meta's peak picking (not adaptive): sensitivity is a share of the flux range."""
     x = tone_bursts([0.1, 0.45, 0.8], 150.0, 1.2)
-    every = analyse(x, RATE, AnalysisSettings(sensitivity=100)).emphasis[:, 0]
-    half = analyse(x, RATE, AnalysisSettings(sensitivity=50)).emphasis[:, 0]
+
+    def meta(**kw: float | bool) -> AnalysisSettings:
+        return AnalysisSettings(adaptive=False, peak_window=0.1, **kw)  # type: ignore[arg-type]
+
+    every = analyse(x, RATE, meta(sensitivity=100)).emphasis[:, 0]
+    half = analyse(x, RATE, meta(sensitivity=50)).emphasis[:, 0]
     assert len(every) == 3 and 1 <= len(half) < 3 and set(half) <= set(every)
-    assert len(analyse(x, RATE, AnalysisSettings(sensitivity=0)).emphasis) == 0
-    assert len(analyse(x, RATE, AnalysisSettings(emphasis=False)).emphasis) == 0
+    assert len(analyse(x, RATE, meta(sensitivity=0)).emphasis) == 0
+    assert len(analyse(x, RATE, meta(emphasis=False)).emphasis) == 0
 
 
 def test_release_falls_99_percent_in_its_time() -> None:
     x = np.zeros(RATE)
     x[: RATE // 4] = np.where(np.arange(RATE // 4) % 2, 1.0, -1.0)  # full-scale, then silence
-    s = AnalysisSettings(emphasis=False, hold=0.0)
+    s = AnalysisSettings(emphasis=False, hold=0.0, resolution=100)  # every point the budget keeps
     a = analyse(x, RATE, s)
     assert value_at(a.amplitude, 0.2) == pytest.approx(1.0, abs=0.01)
     assert value_at(a.amplitude, 0.25 + s.release) == pytest.approx(0.01, abs=0.004)
@@ -66,12 +71,10 @@ def test_envelopes_span_the_sound_from_zero() -> None:
 @pytest.mark.parametrize("block", [1000, 4096, 48_000])
 def test_blocks_give_the_same_design(block: int) -> None:
     x = tone_bursts([0.05, 0.9, 1.6], 120.0, 2.5)
-    whole = analyse(x, RATE)
+    s = AnalysisSettings(resolution=100)  # every point the budget keeps
+    whole = analyse(x, RATE, s)
     parts = analyse_blocks(
-        (x[i : i + block] for i in range(0, len(x), block)),
-        RATE,
-        len(x),
-        level_of(x, AnalysisSettings()),
+        (x[i : i + block] for i in range(0, len(x), block)), RATE, len(x), level_of(x, s), s
     )
     # Summation order differs by block, so where two triangle areas tie to rounding the runs may
     # keep different, equally good breakpoints: the curves agree well within the reduction's error.

@@ -1,10 +1,11 @@
 """Sound-to-haptic analysis: amplitude and frequency envelopes and emphasis from a recording.
 
-Modules, one idea each: settings (what can be tuned, Meta Haptics Studio's defaults), envelope
-(RMS follower), spectrum (centroid and flux per frame), reduce (breakpoint reduction), onsets
-(emphasis), sound (the pipeline), source (reading a sound file in blocks), agreement (measures
-against a reference design). Pure numpy/numba; no Qt and no plugin imports. The names below load
-their module when first used, so `convert --help` starts without numpy.
+Modules, one idea each: settings (what can be tuned, and the defaults), envelope (RMS
+follower), spectrum (centroid, flux and onset strength per frame), reduce (breakpoint
+reduction), onsets (emphasis), sound (the pipeline), source (reading a sound file in blocks),
+staging (a design's level for a device), agreement (measures against a reference design).
+Pure numpy/numba; no Qt and no plugin imports. The names below load their module when first
+used, so `convert --help` starts without numpy.
 """
 
 from __future__ import annotations

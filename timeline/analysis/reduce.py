@@ -5,7 +5,10 @@ region the point whose triangle with its neighbours has the least area is remove
 again, until at most `budget` points remain; then points whose triangle is below `minimum_score`
 (flat stretches, silence) go too. The first and last point of a region are always kept. With a
 `tolerance`, a removal that would move the line further than that from any analysed point is
-refused, so the result is bounded in error instead of in count. `max_error` measures the bound.
+refused, so the result is bounded in error instead of in count. With `slack` (the analysis's
+resolution setting), once the budget is met, points keep going while their removal leaves every
+analysed point within `slack` of the line: the count stays within the budget and a smooth stretch
+keeps only the few points its shape needs. `max_error` measures the bound.
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ def _error_without(t: np.ndarray, v: np.ndarray, left: int, right: int) -> float
 
 @njit(cache=True)
 def _reduce_region(
-    t: np.ndarray, v: np.ndarray, budget: int, minimum_score: float, tolerance: float
+    t: np.ndarray, v: np.ndarray, budget: int, minimum_score: float, tolerance: float, slack: float
 ) -> np.ndarray:
     n = t.shape[0]
     keep = np.ones(n, dtype=np.bool_)
@@ -51,7 +54,10 @@ def _reduce_region(
         if not keep[mid] or prev[mid] != left or nxt[mid] != right:
             continue
         if tolerance < 0 and count <= budget and area >= minimum_score:
-            break
+            if slack <= 0:
+                break
+            if _error_without(t, v, left, right) > slack:
+                continue  # needed to stay within the slack; a later point may still go
         if tolerance >= 0 and _error_without(t, v, left, right) > tolerance:
             continue  # this point is needed to stay within the tolerance
         keep[mid] = False
@@ -73,11 +79,14 @@ def reduce_breakpoints(
     minimum_score: float = 0.0,
     tolerance: float | None = None,
     origin: float | None = None,
+    slack: float = 0.0,
 ) -> np.ndarray:
     """Indices of the breakpoints (t ascending) kept: at most `budget` per `region` seconds.
 
     Regions start at `origin` (default: the first time). With `tolerance`, the count budget gives
     way to the error bound: no analysed point ends up further than `tolerance` from the line.
+    With `slack`, points within the budget go too while no analysed point moves further than
+    `slack` from the line by their removal.
     """
     t = np.ascontiguousarray(t, dtype=np.float64)
     v = np.ascontiguousarray(v, dtype=np.float64)
@@ -89,7 +98,7 @@ def reduce_breakpoints(
     cuts = np.unique(cuts)
     bound = -1.0 if tolerance is None else float(tolerance)
     kept = [
-        a + np.flatnonzero(_reduce_region(t[a:b], v[a:b], budget, minimum_score, bound))
+        a + np.flatnonzero(_reduce_region(t[a:b], v[a:b], budget, minimum_score, bound, slack))
         for a, b in zip(cuts[:-1], cuts[1:], strict=True)
         if b > a
     ]
@@ -106,8 +115,13 @@ def max_error(t: np.ndarray, v: np.ndarray, kept: np.ndarray) -> float:
 class RegionReducer:
     """Reduces breakpoints region by region as they arrive, holding only the unfinished region."""
 
-    def __init__(self, budget: int, minimum_score: float, tolerance: float | None) -> None:
-        self.options = {"budget": budget, "minimum_score": minimum_score, "tolerance": tolerance}
+    def __init__(
+        self, budget: int, minimum_score: float, tolerance: float | None, slack: float = 0.0
+    ) -> None:
+        self.options = {
+            "budget": budget, "minimum_score": minimum_score, "tolerance": tolerance,
+            "slack": slack,
+        }  # fmt: skip
         self.origin: float | None = None
         self.pending_t = np.empty(0)
         self.pending_v = np.empty(0)

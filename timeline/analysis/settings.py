@@ -1,8 +1,11 @@
-"""The settings of the sound-to-haptic analysis, with Meta Haptics Studio's defaults.
+"""The settings of the sound-to-haptic analysis.
 
 Every field is a setting of `haptic-timeline convert` and of the editor's analysis panel. The
-defaults are those of Meta Haptics Studio's open analysis (facebook/meta-haptics-sdk,
-interfaces/studio/audio_analysis), so a design made here starts where Studio's would.
+envelope and spectrum defaults are those of Meta Haptics Studio's open analysis
+(facebook/meta-haptics-sdk, interfaces/studio/audio_analysis), so envelopes start where Studio's
+would. Four differ, each said in docs/convert.md: emphasis found adaptively (`adaptive`, with
+`peak_window` 30 ms; off with peak_window 0.1 s gives Studio's peak picking), `resolution` 50 %
+(100 %: Studio's breakpoint budget alone), and `ducking` 20 % (Lofelt Studio's; Meta's is 50 %).
 """
 
 from __future__ import annotations
@@ -12,6 +15,8 @@ from dataclasses import dataclass, field, fields
 from typing import Any
 
 from timeline.errors import SettingsError
+
+SLACK_AT_ZERO = 0.1  # the error a resolution of 0 % allows (it falls with the square of 1 - %)
 
 
 def _setting(default: Any, help: str) -> Any:
@@ -43,18 +48,28 @@ class AnalysisSettings:
     amplitude_points_per_second: int = _setting(60, "most amplitude breakpoints kept per second")
     frequency_points_per_second: int = _setting(60, "most frequency breakpoints kept per second")
     minimum_score: float = _setting(1e-8, "least change (value x s) a breakpoint must carry")
+    resolution: float = _setting(
+        50.0,
+        "how closely breakpoints follow the analysis: 100 all the budget allows, less "
+        "drops points within a larger error (%)",
+    )
     tolerance: float | None = _setting(
         None, "keep breakpoints within this error of the analysis instead of a count per second"
     )
-    # emphasis: amplitude peaks scored by spectral flux
+    # emphasis: onsets that stand out of the sound around them (or Meta's amplitude peaks)
     emphasis: bool = _setting(True, "mark the sound's hits as emphasis")
-    sensitivity: float = _setting(50.0, "share of the peaks found that get emphasis (%)")
-    peak_window: float = _setting(0.1, "least time between two emphasis points (s)")
-    minimum_rise: float = _setting(0.1, "least amplitude rise into an emphasised peak")
-    plateau: float = _setting(25.0, "how far the amplitude may keep rising after a peak (%)")
+    adaptive: bool = _setting(
+        True, "find hits by how far they stand out of the sound around them (off: Meta's peaks)"
+    )
+    sensitivity: float = _setting(50.0, "how readily a hit gets emphasis: 0 none, 100 most (%)")
+    peak_window: float = _setting(0.03, "least time between two emphasis points (s)")
+    minimum_rise: float = _setting(0.1, "least amplitude rise into a peak (Meta's peaks only)")
+    plateau: float = _setting(
+        25.0, "how far the amplitude may keep rising after a peak (Meta's peaks only, %)"
+    )
     sharpness_min: float = _setting(0.0, "emphasis frequency of the softest hit (0..1)")
     sharpness_max: float = _setting(1.0, "emphasis frequency of the sharpest hit (0..1)")
-    ducking: float = _setting(50.0, "amplitude taken from the envelope under an emphasis (%)")
+    ducking: float = _setting(20.0, "amplitude taken from the envelope under an emphasis (%)")
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -81,7 +96,7 @@ class AnalysisSettings:
                 raise SettingsError(f"the analysis setting {name} must be at least 2")
         if self.tolerance is not None and not 0 < self.tolerance <= 1:
             raise SettingsError("the analysis setting tolerance must be above 0 and at most 1")
-        for name in ("sensitivity", "plateau", "ducking"):
+        for name in ("sensitivity", "plateau", "ducking", "resolution"):
             if not 0 <= getattr(self, name) <= 100:
                 raise SettingsError(f"the analysis setting {name} is a percentage (0 to 100)")
         for name in ("output_min", "output_max", "sharpness_min", "sharpness_max"):
@@ -92,6 +107,11 @@ class AnalysisSettings:
     def help(name: str) -> str:
         """What a setting does, in the user's words (for options and the editor's panel)."""
         return next(f.metadata["help"] for f in fields(AnalysisSettings) if f.name == name)
+
+    @property
+    def slack(self) -> float:
+        """The error (0..1 of full scale) `resolution` lets breakpoint reduction add."""
+        return SLACK_AT_ZERO * (1.0 - self.resolution / 100.0) ** 2
 
     @property
     def hop(self) -> int:

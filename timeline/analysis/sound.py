@@ -16,10 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from timeline.analysis.envelope import EnvelopeFollower
-from timeline.analysis.onsets import emphasis
+from timeline.analysis.onsets import Frames, emphasis
 from timeline.analysis.reduce import RegionReducer
 from timeline.analysis.settings import DEFAULTS, AnalysisSettings
-from timeline.analysis.spectrum import SpectrumFrames, frequency_values
+from timeline.analysis.spectrum import Features, SpectrumFrames, frequency_values
 from timeline.errors import AnalysisError
 
 
@@ -118,20 +118,23 @@ def analyse_blocks(
     follower = EnvelopeFollower.create(
         rate, settings.rms_window, settings.attack, settings.hold, settings.release
     )
-    spectrum = SpectrumFrames.create(rate, settings)
+    spectrum = SpectrumFrames.create(rate, settings, level.peak * level.gain)
     events = _AmplitudeEvents(rate, settings.update, length)
+    # the resolution's error is relative to the sound's peak: a quiet sound keeps its shape too
     amp = RegionReducer(
-        settings.amplitude_points_per_second, settings.minimum_score, settings.tolerance
-    )
+        settings.amplitude_points_per_second, settings.minimum_score, settings.tolerance,
+        settings.slack * min(1.0, level.peak * level.gain),
+    )  # fmt: skip
     freq = RegionReducer(
-        settings.frequency_points_per_second, settings.minimum_score, settings.tolerance
-    )
-    flux_t: list[np.ndarray] = []
-    flux_v: list[np.ndarray] = []
+        settings.frequency_points_per_second, settings.minimum_score, settings.tolerance,
+        settings.slack,
+    )  # fmt: skip
+    frame_t: list[np.ndarray] = []
+    frame_f: list[Features] = []
 
-    def spectral(times: np.ndarray, centroid: np.ndarray, flux: np.ndarray) -> None:
-        flux_t.append(times.astype(np.float32))
-        flux_v.append(flux.astype(np.float32))
+    def spectral(times: np.ndarray, centroid: np.ndarray, features: Features) -> None:
+        frame_t.append(times)
+        frame_f.append(Features.join([features]))
         ahead = times >= 0.0
         freq.add(times[ahead], frequency_values(centroid[ahead], rate, settings))
 
@@ -151,16 +154,14 @@ def analyse_blocks(
     if len(tail):
         amp.add(*events.take(follower.process(tail)))
     spectral(*spectrum.finish())
-    return _assemble(
-        amp.finish(), freq.finish(), flux_t, flux_v, length / rate, rate, level, settings
-    )
+    frames = Frames(np.concatenate(frame_t), Features.join(frame_f))
+    return _assemble(amp.finish(), freq.finish(), frames, length / rate, rate, level, settings)
 
 
 def _assemble(
     amp: tuple[np.ndarray, np.ndarray],
     freq: tuple[np.ndarray, np.ndarray],
-    flux_t: list[np.ndarray],
-    flux_v: list[np.ndarray],
+    frames: Frames,
     duration: float,
     rate: float,
     level: Level,
@@ -171,9 +172,7 @@ def _assemble(
         at = np.concatenate([[0.0], at])
         av = np.concatenate([[av[0] if len(av) else 0.0], av])
     ft, fv = freq
-    flux_times = np.concatenate(flux_t).astype(np.float64)
-    flux = np.concatenate(flux_v).astype(np.float64)
-    peaks, e_amp, e_freq = emphasis(at, av, flux_times, flux, settings)
+    at, av, peaks, e_amp, e_freq = emphasis(at, av, frames, rate, settings)
     end = max(duration, float(at[-1]), float(ft[-1]) if len(ft) else 0.0)
     if at[-1] < end:
         at, av = np.append(at, end), np.append(av, av[-1])

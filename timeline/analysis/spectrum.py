@@ -4,7 +4,10 @@ Frames are `fft_size` samples under a periodic Hann window, one every `hop` samp
 frames reach back before the sound (as zeros) and the last are centred on its end. A frame's
 time is its centre. The centroid is taken over the bins below `centroid_lowpass` and reported as
 a fraction of the Nyquist frequency; where those bins hold too little energy it is 0. The flux is
-the summed rise of each bin's magnitude since the previous frame.
+the summed rise of each bin's magnitude since the previous frame (it scores an emphasis's
+sharpness); the onset strength is the same sum over bands of BAND bins, log-compressed as
+log(1 + C m) with m relative to the sound's peak, so the same sound louder or softer gives the
+same onsets (emphasis times, onsets.py).
 """
 
 from __future__ import annotations
@@ -24,31 +27,68 @@ QUIET_BIN_MAGNITUDE = 0.3  # mean magnitude per kept bin below which the centroi
 # Frames are windowed and transformed in float32 (magnitudes summed in float64): measured twice as
 # fast as float64, and the frequency envelope and flux it gives differ by under 1e-5 (tested).
 FRAME_DTYPE = np.float32
+COMPRESSION = 1.0  # C in log(1 + C * magnitude / peak) of the onset strength
+BAND = 8  # bins summed into one band of the onset strength (a log per band, not per bin)
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def _features(
-    spectra: np.ndarray, half: int, lowpass: int, previous: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per frame: flux (summed magnitude rise), and the magnitude sum and bin-weighted sum below
-    `lowpass`; `previous` (the last frame's magnitudes) is updated in place."""
-    n = spectra.shape[0]
-    flux, energy, weighted = np.zeros(n), np.zeros(n), np.zeros(n)
+    magnitudes: np.ndarray, half: int, lowpass: int, compression: float, previous: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per frame: flux (summed magnitude rise), onset strength (summed rise of the log of each
+    BAND bins' magnitude), power (summed squared magnitude), and the magnitude sum and
+    bin-weighted sum below `lowpass`; `previous` (the last frame's magnitudes, then its bands'
+    logs) is updated in place. Loops without branches, so they compile to vector code."""
+    n = magnitudes.shape[0]
+    bands = (half + BAND - 1) // BAND
+    flux, strength, power = np.zeros(n), np.zeros(n), np.zeros(n)
+    energy, weighted = np.zeros(n), np.zeros(n)
     for j in range(n):
+        row = magnitudes[j]
         rise = 0.0
+        squares = 0.0
+        for k in range(half):
+            m = row[k]
+            squares += m * m
+            rise += max(m - previous[0, k], 0.0)
+            previous[0, k] = m
         total = 0.0
         moment = 0.0
-        for k in range(half):
-            m = abs(spectra[j, k])
-            d = m - previous[k]
-            if d > 0.0:
-                rise += d
-            previous[k] = m
-            if k < lowpass:
-                total += m
-                moment += k * m
-        flux[j], energy[j], weighted[j] = rise, total, moment
-    return flux, energy, weighted
+        for k in range(lowpass):
+            total += row[k]
+            moment += k * row[k]
+        log_rise = 0.0
+        for b in range(bands):
+            band = 0.0
+            for k in range(b * BAND, min(half, (b + 1) * BAND)):
+                band += row[k]
+            level = np.log1p(compression * band)
+            log_rise += max(level - previous[1, b], 0.0)
+            previous[1, b] = level
+        flux[j], strength[j], power[j] = rise, log_rise, squares
+        energy[j], weighted[j] = total, moment
+    return flux, strength, power, energy, weighted
+
+
+@dataclass(frozen=True)
+class Features:
+    """Per-frame onset features: flux, onset strength and power (float32, 12 bytes a frame)."""
+
+    flux: np.ndarray
+    strength: np.ndarray
+    power: np.ndarray
+
+    @classmethod
+    def empty(cls) -> Features:
+        return cls(np.empty(0, np.float32), np.empty(0, np.float32), np.empty(0, np.float32))
+
+    @classmethod
+    def join(cls, parts: list[Features]) -> Features:
+        """The features of consecutive frames, as one (float32, to keep hours of frames small)."""
+        if not parts:
+            return cls.empty()
+        return cls(*(np.concatenate([getattr(p, name) for p in parts]).astype(np.float32)
+                     for name in ("flux", "strength", "power")))  # fmt: skip
 
 
 @dataclass
@@ -59,23 +99,27 @@ class SpectrumFrames:
     size: int
     hop: int
     lowpass_bin: int
+    compression: float  # C / the sound's peak
     window: np.ndarray
     history: np.ndarray  # the last `size` samples seen (zeros before the sound)
-    previous: np.ndarray  # the last frame's magnitudes
+    previous: np.ndarray  # the last frame's magnitudes (row 0) and their logs (row 1)
     pending: int  # samples seen since the last frame ended
     seen: int = 0  # samples fed so far
 
     @classmethod
-    def create(cls, rate: float, settings: AnalysisSettings) -> SpectrumFrames:
+    def create(cls, rate: float, settings: AnalysisSettings, peak: float = 1.0) -> SpectrumFrames:
+        """Frames for a sound at `rate` whose samples reach `peak` (after preprocessing)."""
         size, half = settings.fft_size, settings.fft_size // 2
         lowpass = min(half, max(2, math.ceil(half * settings.centroid_lowpass / (rate / 2.0))))
         n = np.arange(size)
         window = (0.5 - 0.5 * np.cos(2.0 * np.pi * n / size)).astype(FRAME_DTYPE)
-        history, previous = np.zeros(size, FRAME_DTYPE), np.zeros(half, FRAME_DTYPE)
-        return cls(rate, size, settings.hop, lowpass, window, history, previous, 0)
+        history, previous = np.zeros(size, FRAME_DTYPE), np.zeros((2, half), FRAME_DTYPE)
+        compression = COMPRESSION / peak if peak > 1e-12 else COMPRESSION
+        return cls(rate, size, settings.hop, lowpass, compression, window, history, previous, 0)
 
-    def process(self, block: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Times (s), centroids (fraction of Nyquist) and fluxes of the frames that end in block."""
+    def process(self, block: np.ndarray) -> tuple[np.ndarray, np.ndarray, Features]:
+        """Times (s), centroids (fraction of Nyquist) and onset features of the frames that end
+        in block."""
         data = np.concatenate([self.history, np.asarray(block, dtype=FRAME_DTYPE)])
         first = self.hop - self.pending  # samples into the block where the next frame ends
         ends = np.arange(first, len(block) + 1, self.hop)
@@ -83,20 +127,22 @@ class SpectrumFrames:
         self.history = data[-self.size :]
         if len(ends) == 0:
             self.seen += len(block)
-            return np.empty(0), np.empty(0), np.empty(0)
+            return np.empty(0), np.empty(0), Features.empty()
         frames = sliding_window_view(data, self.size)[ends]  # frame j covers data[e : e + size]
         times = (self.seen + ends - self.size / 2.0) / self.rate
         self.seen += len(block)
         half = self.size // 2
-        frames = np.multiply(frames, self.window)  # a fresh array: the view's copy, windowed
+        frames *= self.window  # the fancy index made a copy: windowed in place
         # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array it returns
-        spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1))
-        flux, energy, weighted = _features(spectra, half, self.lowpass_bin, self.previous)
+        spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1, overwrite_x=True))
+        flux, strength, power, energy, weighted = _features(
+            np.abs(spectra), half, self.lowpass_bin, self.compression, self.previous
+        )
         loud = energy >= QUIET_BIN_MAGNITUDE * (self.lowpass_bin - 1)
         centroid = np.where(loud, weighted / np.maximum(energy, 1e-300) / half, 0.0)
-        return times, centroid, flux
+        return times, centroid, Features(flux, strength, power)
 
-    def finish(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def finish(self) -> tuple[np.ndarray, np.ndarray, Features]:
         """The frames that reach past the end of the sound, up to one centred on its end."""
         return self.process(np.zeros(self.size // 2))
 

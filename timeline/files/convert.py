@@ -10,7 +10,7 @@ files hold the design only.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -19,9 +19,16 @@ import numpy as np
 from timeline import edits
 from timeline.analysis import DEFAULTS, AnalysisSettings, SoundAnalysis
 from timeline.analysis.source import analyse_file, mono_samples
+from timeline.analysis.staging import Staging, stage
 from timeline.edits.sound_track import add_sound
-from timeline.edits.vibration import Emphasis, VibrationDesign, place_design
-from timeline.errors import ConvertError
+from timeline.edits.vibration import (
+    Emphasis,
+    VibrationDesign,
+    emphasis_of,
+    place_design,
+    place_design_clip,
+)
+from timeline.errors import ConvertError, HapticTimelineError
 from timeline.model import Project
 
 MAX_SOUND_SECONDS = 3600.0  # a project keeps the source sound up to an hour long
@@ -35,6 +42,8 @@ class ConvertedSound:
     path: Path
     analysis: SoundAnalysis
     sound: np.ndarray | None
+    gain_db: float = 0.0  # the gain staging applied to the design (timeline.analysis.staging)
+    notes: tuple[str, ...] = ()  # what staging did or left for the user to decide
 
 
 def design_of_analysis(analysis: SoundAnalysis) -> VibrationDesign:
@@ -53,21 +62,27 @@ def analyse_sound_file(
     *,
     keep_sound: bool = True,
     progress: Callable[[float], None] | None = None,
+    staging: Staging | None = None,
 ) -> ConvertedSound:
     """Analyse a sound file; with `keep_sound` also read it (mono) for an audio track.
 
     `progress` hears the fraction analysed; it may raise to stop (the editor's Cancel).
+    `staging` sets the design's level for a device (none: the sound's own level).
     """
     path = Path(path)
     analysis = analyse_file(path, settings, progress)
+    gain_db, notes = 0.0, ()
+    if staging is not None:
+        staged = stage(analysis, staging)
+        analysis, gain_db, notes = staged.analysis, staged.gain_db, staged.notes
     if not keep_sound:
-        return ConvertedSound(path, analysis, None)
+        return ConvertedSound(path, analysis, None, gain_db, notes)
     if analysis.duration > MAX_SOUND_SECONDS:
         raise ConvertError(
             f"{path.name} lasts {analysis.duration / 60:.0f} minutes; a project keeps sounds up to "
             f"{MAX_SOUND_SECONDS / 60:.0f} minutes (convert it to .haptic or .ahap instead)"
         )
-    return ConvertedSound(path, analysis, mono_samples(path))
+    return ConvertedSound(path, analysis, mono_samples(path), gain_db, notes)
 
 
 def place_converted(
@@ -86,6 +101,23 @@ def place_converted(
     )
 
 
+def reanalysed(project: Project, clip_id: str, analysis: SoundAnalysis) -> tuple[Project, str]:
+    """A converted design's clip and its emphasis replaced by a new analysis of the same sound,
+    at the clip's start, on its track, with its gain; every other clip is left as it was.
+    Returns the project and the new design clip's id."""
+    track, clip = project.find_clip(clip_id)
+    tile = project.tile(clip.tile_id)
+    name, source = getattr(tile, "name", "vibration"), getattr(tile, "source", "")
+    project = edits.remove_clips(project, [clip_id, *emphasis_of(project, clip_id)])
+    project, new = place_design_clip(
+        project, design_of_analysis(analysis), at=clip.start, track_id=track.id, name=name,
+        source=source,
+    )  # fmt: skip
+    if clip.gain != 1.0:
+        project = edits.set_clip(project, new, gain=clip.gain)
+    return project, new
+
+
 def sound_to_project(
     path: str | os.PathLike,
     settings: AnalysisSettings = DEFAULTS,
@@ -94,25 +126,69 @@ def sound_to_project(
     at: float = 0.0,
     keep_sound: bool = True,
     drive_track: str | None = None,
+    staging: Staging | None = None,
 ) -> Project:
     """A project (new, or `project` extended) with the sound's design, and the sound itself."""
-    converted = analyse_sound_file(path, settings, keep_sound=keep_sound)
+    converted = analyse_sound_file(path, settings, keep_sound=keep_sound, staging=staging)
     base = edits.new_project() if project is None else project
     return place_converted(base, converted, at=at, drive_track=drive_track)
 
 
+@dataclass(frozen=True)
+class Written:
+    """What `convert_file` wrote: the project it made, the staging gain (dB) and its notes."""
+
+    project: Project
+    gain_db: float
+    notes: tuple[str, ...]
+
+
 def convert_file(
-    sound: str | os.PathLike, output: str | os.PathLike, settings: AnalysisSettings = DEFAULTS
-) -> Project:
+    sound: str | os.PathLike,
+    output: str | os.PathLike,
+    settings: AnalysisSettings = DEFAULTS,
+    staging: Staging | None = None,
+) -> Written:
     """Analyse `sound` and write the design to `output` (.haptic, .ahap or a .htl project)."""
     from timeline.files import projectfile
     from timeline.files.exporting import export_project
 
     output = Path(output)
-    if output.suffix.lower() in PROJECT_EXTENSIONS:
-        project = sound_to_project(sound, settings)
+    keep = output.suffix.lower() in PROJECT_EXTENSIONS
+    converted = analyse_sound_file(sound, settings, keep_sound=keep, staging=staging)
+    project = place_converted(edits.new_project(), converted)
+    if keep:
         projectfile.save(project, output)
     else:
-        project = sound_to_project(sound, settings, keep_sound=False)
         export_project(project, output)
-    return project
+    return Written(project, converted.gain_db, converted.notes)
+
+
+def convert_one(
+    sound: Path, output: Path, settings: AnalysisSettings, staging: Staging | None
+) -> tuple[str, ...] | str:
+    """Convert one sound (a worker's job): its staging notes, or the sentence saying why not."""
+    try:
+        return convert_file(sound, output, settings, staging).notes
+    except (HapticTimelineError, OSError) as exc:
+        return str(exc)
+
+
+def convert_many(
+    jobs: list[tuple[Path, Path]],
+    settings: AnalysisSettings,
+    staging: Staging | None,
+    workers: int,
+) -> Iterator[tuple[Path, tuple[str, ...] | str]]:
+    """Convert (sound, output) pairs over `workers` processes (one: in this one), each result
+    as it finishes: its notes, or why it failed."""
+    if workers <= 1 or len(jobs) == 1:
+        for sound, output in jobs:
+            yield sound, convert_one(sound, output, settings, staging)
+        return
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
+        futures = {pool.submit(convert_one, s, o, settings, staging): s for s, o in jobs}
+        for future in as_completed(futures):
+            yield futures[future], future.result()

@@ -1,21 +1,26 @@
 """File > Import sound as haptic: a sound analysed into an editable design, its settings panel.
 
-The panel (a dock beside the timeline) holds every analysis setting, starting at Meta Haptics
-Studio's defaults. Importing analyses the sound off the GUI thread; when done, the design goes
-on a drive track (the selected clip's or the lane under the pointer, if a drive lane, else the
-first) as envelope breakpoints and emphasis, and the sound itself on a new audio track at the same
-time: one undo step. Like any import, the new clips move later together to the first gap where
-they cover no clip already there. Dropping sound files with Alt held does the same at the drop
-point.
+The panel (a dock beside the timeline) holds every analysis setting, starting at its default.
+Importing analyses the sound off the GUI thread; when done, the design goes on a drive track
+(the selected clip's or the lane under the pointer, if a drive lane, else the first) as envelope
+breakpoints and emphasis, and the sound itself on a new audio track at the same time: one undo
+step. Like any import, the new clips move later together to the first gap where they cover no
+clip already there. Dropping sound files with Alt held does the same at the drop point.
+
+The panel is live: a setting changed (after a pause of LIVE_DELAY_MS) re-analyses the sound of
+the selected converted design, or else of the design imported last, and replaces that design
+and its emphasis clips with the new analysis, as one undo step; every other clip stays as the
+designer left it.
 """
 
 from __future__ import annotations
 
 from dataclasses import fields
+from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QEvent, QObject, Qt, Signal
+from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
 from PySide6.QtGui import QDropEvent
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -38,11 +43,14 @@ from timeline.errors import HapticTimelineError, SettingsError
 from timeline.gui.file_jobs import FileJob
 
 if TYPE_CHECKING:  # the analysis (numba) loads with the first sound converted, not at start-up
+    from timeline.analysis.staging import Staging
     from timeline.files.convert import ConvertedSound
     from timeline.gui.main_window import MainWindow
 
 SOUND_EXTENSIONS = "*.wav *.flac *.ogg *.aif *.aiff *.mp3 *.opus"
 DROP_MODIFIER = Qt.KeyboardModifier.AltModifier
+FIRST = ("sensitivity", "resolution", "emphasis", "adaptive", "ducking")  # at the panel's top
+LIVE_DELAY_MS = 300  # a pause in changing settings after which the design is re-analysed
 # spin-box ranges and decimals for the numeric settings (unit suffix from the help text)
 RANGES = {
     "rms_window": (0.0, 0.1, 5), "attack": (0.0, 1.0, 5), "hold": (0.0, 1.0, 4),
@@ -50,7 +58,8 @@ RANGES = {
     "gain_db": (-60.0, 40.0, 1), "centroid_lowpass": (10.0, 20000.0, 0),
     "frequency_min": (0.0, 20000.0, 0), "frequency_max": (1.0, 20000.0, 0),
     "output_min": (0.0, 1.0, 2), "output_max": (0.0, 1.0, 2), "minimum_score": (0.0, 1.0, 9),
-    "tolerance": (0.0, 1.0, 3), "sensitivity": (0.0, 100.0, 0), "peak_window": (0.0, 2.0, 3),
+    "tolerance": (0.0, 1.0, 3), "resolution": (0.0, 100.0, 0), "sensitivity": (0.0, 100.0, 0),
+    "peak_window": (0.0, 2.0, 3),
     "minimum_rise": (0.0, 1.0, 2), "plateau": (0.0, 100.0, 0), "sharpness_min": (0.0, 1.0, 2),
     "sharpness_max": (0.0, 1.0, 2), "ducking": (0.0, 100.0, 0),
 }  # fmt: skip
@@ -71,7 +80,8 @@ LABELS = {
     "output_min": "Lowest frequency", "output_max": "Highest frequency",
     "amplitude_points_per_second": "Amplitude points / s",
     "frequency_points_per_second": "Frequency points / s", "minimum_score": "Minimum score",
-    "tolerance": "Error bound", "emphasis": "Emphasis", "sensitivity": "Sensitivity (%)",
+    "tolerance": "Error bound", "resolution": "Resolution (%)", "emphasis": "Emphasis",
+    "adaptive": "Adaptive emphasis", "sensitivity": "Sensitivity (%)",
     "peak_window": "Peak window (s)", "minimum_rise": "Minimum rise", "plateau": "Plateau (%)",
     "sharpness_min": "Softest hit frequency", "sharpness_max": "Sharpest hit frequency",
     "ducking": "Ducking (%)",
@@ -81,11 +91,30 @@ LABELS = {
 Field = QCheckBox | QSpinBox | QDoubleSpinBox  # one analysis setting's editor
 
 
+@cache
+def _staging() -> Staging:
+    """The level designs take, as `convert` stages them: for the default device (sim)."""
+    from timeline.limits.staging import staging_for
+    from timeline.plugins.device_protocol import open_device
+
+    with open_device("sim") as device:
+        return staging_for(device.info)
+
+
 def _analyse(path: Path, settings: AnalysisSettings, progress) -> ConvertedSound:  # noqa: ANN001
-    """Worker thread: a sound file's analysis, placed nowhere yet."""
+    """Worker thread: a sound file's analysis at the default device's level, placed nowhere."""
     from timeline.files.convert import analyse_sound_file
 
-    return analyse_sound_file(path, settings, progress=progress)
+    return analyse_sound_file(path, settings, progress=progress, staging=_staging())
+
+
+def _reanalyse(path: Path, settings: AnalysisSettings, progress) -> ConvertedSound:  # noqa: ANN001
+    """Worker thread: the sound analysed again, without reading it for an audio track."""
+    from timeline.files.convert import analyse_sound_file
+
+    return analyse_sound_file(
+        path, settings, keep_sound=False, progress=progress, staging=_staging()
+    )
 
 
 def _label(name: str) -> str:
@@ -101,17 +130,18 @@ class AnalysisPanel(QWidget):
         super().__init__()
         form = QFormLayout()
         self.fields: dict[str, Field] = {}
-        for f in fields(AnalysisSettings):
-            widget = self._field(f.name, getattr(DEFAULTS, f.name))
-            widget.setToolTip(AnalysisSettings.help(f.name))
+        rest = [f.name for f in fields(AnalysisSettings) if f.name not in FIRST]
+        for name in (*FIRST, *rest):
+            widget = self._field(name, getattr(DEFAULTS, name))
+            widget.setToolTip(AnalysisSettings.help(name))
             widget.setMaximumWidth(150)
-            form.addRow(_label(f.name), widget)
-            self.fields[f.name] = widget
+            form.addRow(_label(name), widget)
+            self.fields[name] = widget
         self.error = QLabel("")
         self.error.setStyleSheet("color: #b00020;")
         self.error.setWordWrap(True)
-        defaults = QPushButton("Studio defaults")
-        defaults.setToolTip("Put every setting back to Meta Haptics Studio's default")
+        defaults = QPushButton("Defaults")
+        defaults.setToolTip("Put every setting back to its default (docs/convert.md)")
         defaults.clicked.connect(self.restore_defaults)
         inner = QWidget()
         inner.setLayout(form)
@@ -144,7 +174,7 @@ class AnalysisPanel(QWidget):
         return number
 
     def restore_defaults(self) -> None:
-        """Meta Haptics Studio's settings in every field."""
+        """The default settings in every field."""
         self.show_settings(DEFAULTS)
 
     def show_settings(self, settings: AnalysisSettings) -> None:
@@ -189,6 +219,14 @@ class SoundImport(QObject):
         self.dock.hide()
         self._drop_modifiers = Qt.KeyboardModifier.NoModifier
         window.view.viewport().installEventFilter(self)
+        self.sounds: dict[str, Path] = {}  # the sounds imported as haptic, by their file name
+        self.last_sound = ""  # the file name of the sound imported last
+        self._generation = 0  # the latest re-analysis; older ones finishing later are dropped
+        self.live = QTimer(self)
+        self.live.setSingleShot(True)
+        self.live.setInterval(LIVE_DELAY_MS)
+        self.live.timeout.connect(self.reanalyse)
+        self.panel.changed.connect(self.live.start)
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
         """Note the keys held when files are dropped on the lanes (the view handles the drop)."""
@@ -223,6 +261,7 @@ class SoundImport(QObject):
 
     def convert_files(self, paths: list[Path], track_id: str, at: float) -> None:
         """Analyse sounds in the background; each lands at `at` on the drive track chosen."""
+        self.live.stop()  # settings changed just before are this import's: nothing to re-run
         try:
             settings = self.panel.settings()
         except SettingsError as exc:
@@ -253,10 +292,71 @@ class SoundImport(QObject):
             self.window.messages.show_message(str(exc), "error")
             return
         doc.replace(f"import {found.path.name} as haptic", project)
+        self.sounds[found.path.name] = found.path
+        self.last_sound = found.path.name
         doc.select_clips(new)
         self.window.view.keep_visible(min(project.find_clip(i)[1].start for i in new))
         a = found.analysis
         self.window.messages.show_message(
             f"{found.path.name} as haptic: {len(a.amplitude)} amplitude and {len(a.frequency)} "
             f"frequency points, {len(a.emphasis)} emphasis; the sound is on an audio track"
+            + "".join(f"; {note}" for note in found.notes)
+        )
+
+    def live_target(self) -> tuple[str, Path] | None:
+        """The converted design the panel re-analyses: the selected one, else the last imported
+        (its clip id and sound), or None when there is none left in the project."""
+        from timeline.tiles.vibration_tile import VibrationTile
+
+        project = self.window.doc.project
+        found: dict[str, str] = {}  # clip id -> sound file name
+        for track in project.tracks:
+            for clip in track.clips:
+                tile = project.tile(clip.tile_id)
+                if isinstance(tile, VibrationTile) and tile.source in self.sounds:
+                    found[clip.id] = tile.source
+        chosen = [c for c in self.window.doc.selected_clips if c in found]
+        if not chosen:
+            chosen = [c for c, source in found.items() if source == self.last_sound][-1:]
+        return (chosen[0], self.sounds[found[chosen[0]]]) if chosen else None
+
+    def reanalyse(self) -> None:
+        """Analyse the live target's sound again with the panel's settings (in the background)."""
+        target = self.live_target()
+        if target is None:
+            return
+        try:
+            settings = self.panel.settings()
+        except SettingsError:
+            return  # the panel says why
+        self._generation += 1
+        generation, path = self._generation, target[1]
+        job = FileJob(
+            f"Re-analysis of {path.name}",
+            lambda progress: _reanalyse(path, settings, progress),
+        )
+        self.window.run_job(job, f"re-analysing {path.name}…",
+                            lambda found: self._reanalysed(found, generation))  # fmt: skip
+
+    def _reanalysed(self, found: ConvertedSound, generation: int) -> None:
+        if generation != self._generation:
+            return  # a later change of settings is being analysed
+        target = self.live_target()
+        if target is None or target[1] != found.path:
+            return
+        from timeline.files.convert import reanalysed
+
+        doc = self.window.doc
+        try:
+            project, new = reanalysed(doc.project, target[0], found.analysis)
+        except HapticTimelineError as exc:
+            self.window.messages.show_message(str(exc), "error")
+            return
+        doc.replace(f"re-analyse {found.path.name}", project)
+        doc.select_clips([new])
+        a = found.analysis
+        self.window.messages.show_message(
+            f"{found.path.name} re-analysed: {len(a.amplitude)} amplitude and "
+            f"{len(a.frequency)} frequency points, {len(a.emphasis)} emphasis"
+            + "".join(f"; {note}" for note in found.notes)
         )
