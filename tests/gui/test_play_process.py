@@ -72,7 +72,7 @@ def test_the_sim_plays_on_time_from_its_process_while_the_editors_lock_is_held()
     quieter = edits.set_clip_gain(project, clip, 0.125)
     process = PlayProcess("sim")
     try:
-        process.send("warm", project, 0.0)  # as the editor does once its window has painted
+        process.warm(project, 0.0)  # as the editor does once its window has painted
         with busy_interpreter():
             process.send("play", project, 0.0, 1.2, False, None, Hand("hold"), time.perf_counter())
             time.sleep(0.5)

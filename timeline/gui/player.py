@@ -178,7 +178,7 @@ class Player(QObject):
         try:
             device = self._open()
             if self._own_process(device, project):
-                _Shared.get(self.device_name).send("warm", project, start)
+                _Shared.get(self.device_name).warm(project, start)
             device.warm_up()  # position plays still run here
             # The findings check's libraries (scipy.signal), imported here rather than beside
             # the first play, where the import would hold the interpreter lock for ~0.1 s.
@@ -400,6 +400,8 @@ class Player(QObject):
     def close(self) -> None:
         """Stop, release the device and report nothing more (the window is closing)."""
         self.stop()
+        if _Shared.owner is self:
+            _Shared.owner = None
         self._poll.stop()
         self._restore_switch()
         if self.device is not None:
