@@ -30,6 +30,8 @@ from dataclasses import dataclass
 from multiprocessing.connection import Connection
 from typing import Any
 
+from immutables import Map
+
 from timeline.errors import HapticTimelineError
 from timeline.model import Project, Track
 from timeline.plugins.device_protocol import Hand, LiveTelemetry, open_device
@@ -76,16 +78,17 @@ def rebuild(old: Project | None, change: Delta) -> Project:
     """The project `change` stands for, given the one it was made against."""
     before = {} if old is None else {t.id: t for t in old.tracks}
     tracks = tuple(before[t] if isinstance(t, str) else t for t in change.tracks)
-    tiles = old.tiles if old is not None else None
-    if tiles is None:
-        tiles = change.tiles
+    if old is None:
+        tiles = Map(change.tiles)
     elif change.tiles or change.gone:
-        editing = tiles.mutate()
+        editing = old.tiles.mutate()
         for k, v in change.tiles.items():
             editing[k] = v
         for k in change.gone:
             del editing[k]
         tiles = editing.finish()
+    else:
+        tiles = old.tiles
     return Project(axis=change.axis, rate=change.rate, tracks=tracks, tiles=tiles)
 
 
@@ -205,11 +208,11 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
                 if play is None or not play.thread.is_alive():  # else the mixer is the play's
                     warm_up(device.info.rate, mixer, project, args[1])
                 warmed.send(True)
-            elif kind == "play":
+            elif kind == "play" and project is not None:
                 if play is not None:
                     play.end()
                 play = _Play(device, mixer, project, outbox, *args[1:])
-            elif kind == "edit" and play is not None:
+            elif kind == "edit" and play is not None and project is not None:
                 play.stream.set_project(project)
                 play.stream.state.version = args[1]
             elif kind == "stop" and play is not None:
