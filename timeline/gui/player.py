@@ -11,10 +11,16 @@ The stream counts blocks handed over later than the lead (what a real knob feels
 underrun); the player names them in a notice while playing and when the play ends. Once the
 window has painted, `warm_up` loads the device's compiled code and renders the first chunk
 ahead on a background thread, so the first block goes out within a few ms of Play.
+
+A time project on the simulated knob plays from a process of its own (play_process), one for
+the editor's process, so the GUI's hold on the interpreter lock cannot delay a block: `stream` is
+then the play's mirror here (its project versions, and where the child's stream is), and edits
+cross to the child as deltas of the tracks and tiles that changed.
 """
 
 from __future__ import annotations
 
+import atexit
 import importlib
 import sys
 import threading
@@ -35,6 +41,7 @@ from timeline.rendering.sound_out import SoundOut
 
 from .job_errors import unexpected
 from .live_stream import CHUNK_SECONDS, LiveStream, LiveTables
+from .play_process import PlayProcess
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
 LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this often
@@ -42,6 +49,30 @@ LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this o
 # long instead of CPython's 5 ms, so the playing thread, which needs it for a moment every
 # 10 ms block, waits less for it.
 SWITCH_SECONDS = 0.001
+OWN_PROCESS = ("sim",)  # devices whose time plays run in the play process
+STOP_SECONDS = 2.0  # a stop waits this long for the device to finish its block
+
+
+class _Shared:
+    """The play process of the editor's process (started at the first warm-up or play, kept
+    for every window) and the player whose play it is playing."""
+
+    lock = threading.Lock()
+    process: PlayProcess | None = None
+    owner: Player | None = None
+
+    @classmethod
+    def get(cls, device_name: str) -> PlayProcess:
+        with cls.lock:
+            if cls.process is not None and (
+                not cls.process.alive or cls.process.device_name != device_name
+            ):
+                cls.process.close()
+                cls.process = None
+            if cls.process is None:
+                cls.process = PlayProcess(device_name)
+                atexit.register(cls.process.close)
+            return cls.process
 
 
 class _Stopped(Exception):
@@ -85,6 +116,9 @@ class Player(QObject):
         self._warm_source: Callable[[], Project] | None = None  # until the window first paints
         self._late_named = (0, 0.0)  # late blocks already named, and when
         self._switch = 0.0  # the interpreter's switch interval before playing (0: not playing)
+        self._opened: Device | None = None  # the device this player opened itself
+        self._remote: PlayProcess | None = None  # the play process, while it plays for us
+        self._counts: Lateness | None = None  # the play process's newest late-block counts
 
     @staticmethod
     def devices() -> list[str]:
@@ -95,6 +129,8 @@ class Player(QObject):
 
     @property
     def playing(self) -> bool:
+        if self._remote is not None:
+            return True
         return self._thread is not None and self._thread.is_alive()
 
     def choose_device(self, name: str) -> None:
@@ -109,8 +145,12 @@ class Player(QObject):
     def _open(self) -> Device:
         with self._opening:
             if self.device is None:
-                self.device = open_device(self.device_name)
+                self.device = self._opened = open_device(self.device_name)
             return self.device
+
+    def _own_process(self, device: Device, project: Project) -> bool:
+        """Whether a play of `project` on `device` runs in the play process."""
+        return project.axis == "time" and self.device_name in OWN_PROCESS and device is self._opened
 
     def warm_up_once_painted(self, window: QObject, project: Callable[[], Project]) -> None:
         """Warm up (below) on the project of the moment right after `window` first paints, so
@@ -137,11 +177,13 @@ class Player(QObject):
     def _warm_up(self, project: Project, start: float) -> None:
         try:
             device = self._open()
-            device.warm_up()
+            if self._own_process(device, project):
+                _Shared.get(self.device_name).warm(project, start)
+            device.warm_up()  # position plays still run here
             # The findings check's libraries (scipy.signal), imported here rather than beside
             # the first play, where the import would hold the interpreter lock for ~0.1 s.
             importlib.import_module("timeline.limits.check")
-            if project.axis == "time" and project.duration > start:
+            if project.axis == "time" and project.duration > start and device is not self._opened:
                 stop = min(project.duration, start + CHUNK_SECONDS)
                 stream = LiveStream(project, device.info.rate, start, stop, mixer=self._mixer)
                 stream.render(project, start, stop)
@@ -151,7 +193,9 @@ class Player(QObject):
     @property
     def lateness(self) -> Lateness | None:
         """Late blocks of the current (or last) time-mode play; None for a position play."""
-        return None if self.stream is None else self.stream.lateness.counts()
+        if self.stream is None:
+            return None
+        return self._counts or self.stream.lateness.counts()
 
     def play(
         self,
@@ -191,6 +235,8 @@ class Player(QObject):
                 )  # fmt: skip
                 self.stream.on_block = self._at
                 program, hand = self.stream, self.hand
+                if self._own_process(device, project):
+                    self._play_there(project, start, stop, loop, tracks, asked)
         except HapticTimelineError as exc:
             self.finished.emit(str(exc))
             return
@@ -198,15 +244,51 @@ class Player(QObject):
         self._late_named = (0, 0.0)
         self._halt.clear()
         self._started = time.perf_counter()
-        self._thread = threading.Thread(target=self._run, args=(device, program, hand), daemon=True)
         self._switch = self._switch or sys.getswitchinterval()
         sys.setswitchinterval(SWITCH_SECONDS)
-        self._thread.start()
+        if self._remote is None:
+            self._thread = threading.Thread(
+                target=self._run, args=(device, program, hand), daemon=True
+            )
+            self._thread.start()
         self._poll.start()
         if self.stream is not None:
             note = self.sound.play(project, start, stop, loop)
             if note:
                 self.notice.emit(note)
+
+    def _play_there(
+        self,
+        project: Project,
+        start: float,
+        stop: float,
+        loop: bool,
+        tracks: Iterable[str] | None,
+        asked: float,
+    ) -> None:
+        """Play the stream in the play process; `stream` stays here as its mirror."""
+        process = _Shared.get(self.device_name)
+        owner = _Shared.owner
+        if owner is not None and owner is not self:
+            owner.stop()  # another window's play: one knob plays one thing
+        self._counts = None
+        process.send("play", project, start, stop, loop, tracks, self.hand, asked)
+        self._remote, _Shared.owner = process, self
+
+    def _heard(self, messages: list[tuple]) -> None:
+        """Take in what the play process said: telemetry, where it is, late counts, the end."""
+        stream = self.stream
+        for kind, *args in messages:
+            if kind == "part":
+                self._parts.append(args[0])
+            elif kind == "at" and stream is not None:
+                self._position = stream.state.position = args[0]
+                if stream.state.live_version != args[1]:
+                    stream.state.live_version, stream.state.live_at = args[1], time.perf_counter()
+                self._counts = args[2]
+            elif kind == "done":
+                self._outcome, self._counts = args[0], args[1]
+                self._remote = None
 
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:
@@ -236,7 +318,9 @@ class Player(QObject):
                 raise _Stopped("stopped")
 
     def _drain(self) -> None:
-        """GUI thread: pass on what the playing thread left behind."""
+        """GUI thread: pass on what the playing thread (or process) left behind."""
+        if self._remote is not None:
+            self._heard(self._remote.take())
         parts = [self._parts.popleft() for _ in range(len(self._parts))]
         if parts:
             angle = np.concatenate([p.angle for p in parts])
@@ -289,7 +373,9 @@ class Player(QObject):
         if not self.playing:
             return
         if self.stream is not None:
-            self.stream.set_project(project)
+            version = self.stream.set_project(project)
+            if self._remote is not None:
+                self._remote.send("edit", project, version)
             self.sound.follow(project)
         elif self.tables is not None:
             self.tables.set_project(project)
@@ -301,6 +387,11 @@ class Player(QObject):
         self.sound.stop()
         if self.stream is not None:
             self.stream.stop_stream()
+        if self._remote is not None:
+            self._remote.stop()
+            self._heard(self._remote.wait_done(STOP_SECONDS))
+            if self._remote is not None:  # no answer: the next play starts it over
+                self._outcome, self._remote = "", None
         if self._thread is not None:
             self._thread.join(timeout=2.0)
             self._thread = None
@@ -309,6 +400,8 @@ class Player(QObject):
     def close(self) -> None:
         """Stop, release the device and report nothing more (the window is closing)."""
         self.stop()
+        if _Shared.owner is self:
+            _Shared.owner = None
         self._poll.stop()
         self._restore_switch()
         if self.device is not None:
