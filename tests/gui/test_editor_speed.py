@@ -1,7 +1,8 @@
 """What keeps the editor fast at 20,000 clips, asserted as behaviour (timed by
 `haptic-timeline bench editor`, never here): stale limits checks are stopped, closing with checks
 queued says nothing, zoom moves no clip yet places each at start x scale, the waveform editor's
-decimated curve keeps every column's extremes, and the first paint loads no scipy.signal."""
+decimated curve keeps every column's extremes, and the first paint loads no scipy.signal (nor
+importlib.metadata, html, the export dialog or the sound analysis panel)."""
 
 from __future__ import annotations
 
@@ -186,14 +187,20 @@ def test_dragging_a_clip_does_not_repaint_the_waveform_editor(window, qtbot):
 
 PROBE = """
 import json, os, sys
+DEFERRED = (  # heavy libraries, and what only a command needs
+    "scipy.signal", "numba", "importlib.metadata", "html", "timeline.gui.export_options",
+)
 from PySide6.QtCore import QEvent, QObject, QTimer
 from timeline.gui.app import launch
 app, window = launch(sys.argv[1])
 seen = {}
 def painted():
-    seen.update(modules=[m for m in ("scipy.signal", "numba") if m in sys.modules])
-    window.close()
-    app.quit()
+    try:
+        seen.update(modules=[m for m in DEFERRED if m in sys.modules])
+        seen.update(analysis_panel=window.sound_import._panel is not None)
+    finally:
+        window.close()
+        app.quit()
 class First(QObject):
     def eventFilter(self, watched, event):
         if event.type() == QEvent.Type.Paint:
@@ -207,7 +214,7 @@ print(json.dumps(seen))
 """
 
 
-def test_the_first_paint_loads_neither_scipy_signal_nor_numba(tmp_path):
+def test_the_first_paint_loads_neither_scipy_signal_nor_numba_nor_what_commands_need(tmp_path):
     env = {**os.environ, "QT_QPA_PLATFORM": "offscreen", "XDG_DATA_HOME": str(tmp_path)}
     done = subprocess.run(
         [sys.executable, "-c", PROBE, str(EXAMPLE)],
@@ -216,4 +223,5 @@ def test_the_first_paint_loads_neither_scipy_signal_nor_numba(tmp_path):
         env=env,
         check=True,
     )
-    assert json.loads(done.stdout.strip().splitlines()[-1]) == {"modules": []}
+    found = json.loads(done.stdout.strip().splitlines()[-1])
+    assert found == {"modules": [], "analysis_panel": False}

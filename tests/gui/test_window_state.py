@@ -36,6 +36,7 @@ def test_a_new_window_remembers_size_splitters_and_hand(window, qtbot, settings_
     assert (again.width(), again.height()) == (1100, 720)
     assert again.top_split.sizes() == top and again.bottom_split.sizes() == bottom
     assert again.sound_import.dock.isVisible()
+    assert again.sound_import.dock.widget() is again.sound_import._panel is not None  # built
     h = again.transport
     assert (h.hand_model.currentText(), h.hand.currentText()) == (model, "turn")
     assert h.hand_value.value() == -45.0

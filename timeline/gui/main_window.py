@@ -30,12 +30,11 @@ from timeline.files import importing, projectfile
 from timeline.model import Project
 from timeline.plugins.file_formats import all_formats
 
-from . import variants, window_state
+from . import window_state
 from .arrange import Arrange
 from .autosave import Autosaver, Recoverable, recoverable
 from .clipboard import ClipClipboard
 from .document import Document
-from .export_options import ExportOptions
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .findings_overlay import FindingsOverlay
 from .gestures.pivot import PivotGesture
@@ -414,12 +413,16 @@ class MainWindow(QMainWindow):
 
     def save_variant(self) -> None:
         """Save the design as the next variant (A, B, ...)."""
+        from . import variants  # loaded when first used, not on the way to the first paint
+
         name = variants.next_name(self.doc.project)
         if self.doc.apply("save variant", variants.save_next, name):
             self.messages.show_message(f"saved variant {name}; press V to switch between variants")
 
     def next_variant(self) -> None:
         """Switch to the next variant, to compare by feel."""
+        from . import variants
+
         if self.doc.apply("switch variant", variants.switch_next):
             self.messages.show_message(f"now playing variant {self.doc.project.active_variant}")
 
@@ -643,6 +646,8 @@ class MainWindow(QMainWindow):
         )
         if not path:
             return
+        from .export_options import ExportOptions  # not on the way to the first paint
+
         dialog = ExportOptions(self.doc.project, Path(path), self)
         if dialog.exec() == QDialog.DialogCode.Accepted:
             self.export_to(Path(path), **dialog.options())
