@@ -239,7 +239,6 @@ class SoundImport(QObject):
         self.live.setSingleShot(True)
         self.live.setInterval(LIVE_DELAY_MS)
         self.live.timeout.connect(self.reanalyse)
-        self.panel.changed.connect(self.live.start)
 
     @property
     def panel(self) -> AnalysisPanel:
@@ -247,6 +246,7 @@ class SoundImport(QObject):
         if self._panel is None:
             self._panel = AnalysisPanel()
             self._panel.restore_defaults()
+            self._panel.changed.connect(self.live.start)  # a changed setting re-runs the analysis
             self.dock.setWidget(self._panel)
         return self._panel
 
