@@ -11,10 +11,12 @@ import os
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from timeline import edits
 from timeline.errors import EditError, FormatError, HapticTimelineError
 from timeline.files import gc_pause
-from timeline.model import Project
+from timeline.model import Clip, Project
 from timeline.plugins.file_formats import (
     Imported,
     Progress,
@@ -23,6 +25,8 @@ from timeline.plugins.file_formats import (
     readers_for,
 )
 from timeline.plugins.track_kinds import DEFAULT_KIND, track_kind
+
+_PROBE_SAMPLES = 64  # samples of each new tile rendered to prove it renders (check_placed)
 
 
 def check_readable(path: Path) -> None:
@@ -80,7 +84,8 @@ def import_file(
     """
     _check_start(project, at)  # before the (maybe long) read
     imported = read_file(path, progress=progress, **options)
-    return place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
+    return _usable(place, project, imported, Path(path).name, kind=kind or DEFAULT_KIND, at=at,
+                   gain=gain)  # fmt: skip
 
 
 def place(
@@ -131,6 +136,52 @@ def _place_batch(
             tile_ids[id(tile)] = project.find_clip(clip_id)[1].tile_id
     clip_ids += placed
     return project
+
+
+def _usable(
+    placer: Any, project: Project, imported: Imported, name: str, **where: Any
+) -> tuple[Project, list[str]]:
+    """placer(project, imported, **where), refused with one sentence naming the file unless every
+    verb can use the result (importing.check_placed)."""
+    placed, clip_ids = placer(project, imported, **where)
+    try:
+        check_placed(placed, clip_ids)
+    except EditError as exc:
+        raise FormatError(f"{name} cannot be imported: {exc}") from None
+    return placed, clip_ids
+
+
+def check_placed(project: Project, clip_ids: list[str]) -> None:
+    """Raise EditError unless the new clips are ones every verb can use: none starts before the
+    timeline's 0, the project stays short enough for one render at its rate (MAX_SAMPLES), and
+    each new tile renders its first samples as finite numbers (a guard against a tile the
+    constructors let through but a renderer cannot draw)."""
+    from timeline.rendering.mixer import MAX_SAMPLES
+    from timeline.signal.render_presets import preset
+
+    tiles: dict[str, Clip] = {}
+    for clip_id in clip_ids:
+        clip = project.find_clip(clip_id)[1]
+        tiles.setdefault(clip.tile_id, clip)
+        if project.axis == "time" and clip.start < 0:
+            raise EditError(f"a clip would start at {clip.start:g} s, before the timeline's 0")
+    if project.duration * project.rate > MAX_SAMPLES:
+        raise EditError(
+            f"the project would last {project.duration:.6g} {project.unit}, longer than one "
+            f"render holds at {project.rate:g} per {project.unit} "
+            f"({MAX_SAMPLES / project.rate:.6g} {project.unit})"
+        )
+    quality = preset("draft")
+    for tile_id, clip in tiles.items():
+        tile = project.tile(tile_id)
+        n = max(1, min(_PROBE_SAMPLES, int(clip.duration * project.rate)))
+        du = 1.0 / (project.rate * clip.stretch)
+        try:
+            values = tile.render(clip.source_in, du, n, quality)
+        except (ArithmeticError, ValueError, MemoryError) as exc:
+            raise EditError(f"tile {tile.name!r} cannot be rendered ({exc})") from None
+        if not np.all(np.isfinite(values)):
+            raise EditError(f"tile {tile.name!r} renders values that are not finite numbers")
 
 
 def _check_start(project: Project, at: float) -> None:
@@ -190,6 +241,7 @@ def import_into_project_file(
     project = projectfile.load(project_path) if project_path.exists() else edits.new_project()
     _check_start(project, at)  # before the (maybe long) read
     imported = read_file(path, progress=progress, **options)
-    project, clip_ids = place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
+    project, clip_ids = _usable(place, project, imported, Path(path).name,
+                                kind=kind or DEFAULT_KIND, at=at, gain=gain)  # fmt: skip
     projectfile.save(project, project_path)
     return clip_ids, imported.notes
