@@ -25,6 +25,7 @@ from timeline.plugins.file_formats import (
     readers_for,
 )
 from timeline.plugins.track_kinds import DEFAULT_KIND, track_kind
+from timeline.tiles import GeneratorTile, SplineTile, Tile
 
 _PROBE_SAMPLES = 64  # samples of each new tile rendered to prove it renders (check_placed)
 
@@ -154,34 +155,43 @@ def _usable(
 def check_placed(project: Project, clip_ids: list[str]) -> None:
     """Raise EditError unless the new clips are ones every verb can use: none starts before the
     timeline's 0, the project stays short enough for one render at its rate (MAX_SAMPLES), and
-    each new tile renders its first samples as finite numbers (a guard against a tile the
-    constructors let through but a renderer cannot draw)."""
+    each new closed-form tile (generator or spline; one per distinct shape) renders its first
+    samples as finite numbers: a guard against a shape its constructor let through but a
+    renderer cannot draw. Samples are finite by construction, and an emphasis is a bounded
+    pulse, so those are not probed (a .haptic file has one per emphasis)."""
     from timeline.rendering.mixer import MAX_SAMPLES
-    from timeline.signal.render_presets import preset
 
-    tiles: dict[str, Clip] = {}
+    probes: dict[str, tuple[Tile, Clip]] = {}
     for clip_id in clip_ids:
         clip = project.find_clip(clip_id)[1]
-        tiles.setdefault(clip.tile_id, clip)
         if project.axis == "time" and clip.start < 0:
             raise EditError(f"a clip would start at {clip.start:g} s, before the timeline's 0")
+        tile = project.tile(clip.tile_id)
+        if isinstance(tile, SplineTile) or (
+            isinstance(tile, GeneratorTile) and tile.generator != "emphasis"
+        ):
+            probes.setdefault(tile.key, (tile, clip))
     if project.duration * project.rate > MAX_SAMPLES:
         raise EditError(
             f"the project would last {project.duration:.6g} {project.unit}, longer than one "
             f"render holds at {project.rate:g} per {project.unit} "
             f"({MAX_SAMPLES / project.rate:.6g} {project.unit})"
         )
-    quality = preset("draft")
-    for tile_id, clip in tiles.items():
-        tile = project.tile(tile_id)
-        n = max(1, min(_PROBE_SAMPLES, int(clip.duration * project.rate)))
-        du = 1.0 / (project.rate * clip.stretch)
-        try:
-            values = tile.render(clip.source_in, du, n, quality)
-        except (ArithmeticError, ValueError, MemoryError) as exc:
-            raise EditError(f"tile {tile.name!r} cannot be rendered ({exc})") from None
-        if not np.all(np.isfinite(values)):
-            raise EditError(f"tile {tile.name!r} renders values that are not finite numbers")
+    for tile, clip in probes.values():
+        _probe(tile, clip, project.rate)
+
+
+def _probe(tile: Tile, clip: Clip, rate: float) -> None:
+    """Render a clip's first samples of its tile (draft); EditError unless finite."""
+    from timeline.signal.render_presets import preset
+
+    n = max(1, min(_PROBE_SAMPLES, int(clip.duration * rate)))
+    try:
+        values = tile.render(clip.source_in, 1.0 / (rate * clip.stretch), n, preset("draft"))
+    except (ArithmeticError, ValueError, MemoryError) as exc:
+        raise EditError(f"tile {tile.name!r} cannot be rendered ({exc})") from None
+    if not np.all(np.isfinite(values)):
+        raise EditError(f"tile {tile.name!r} renders values that are not finite numbers")
 
 
 def _check_start(project: Project, at: float) -> None:
