@@ -25,7 +25,6 @@ from timeline.model import Project
 from timeline.plugins.file_formats import FormatError, Imported, Progress
 from timeline.signal.vibration_design import DEFAULT_FREQUENCY
 
-
 MAX_WEAK_NOTES = 3  # weak emphases noted one by one; past these, one note counts the rest
 
 
