@@ -17,7 +17,7 @@ from timeline.plugins import discovery
 ORDER = (
     "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
     "accumulation", "edit-to-feel", "scale", "convert", "formats", "waves", "design-drag",
-    "media", "compare", "convert-memory", "playback", "editor",
+    "media", "compare", "convert-memory", "readers", "playback", "editor",
 )  # fmt: skip
 
 BUILT_IN = {
@@ -35,6 +35,7 @@ BUILT_IN = {
     "media": "timeline.bench.project_media",
     "compare": "timeline.bench.compare_icons",
     "convert-memory": "timeline.bench.convert_memory",
+    "readers": "timeline.bench.readers",
     "playback": "timeline.bench.playback",
     "editor": "timeline.bench.editor",
 }
