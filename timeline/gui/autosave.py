@@ -132,9 +132,9 @@ class Autosaver(QObject):
             self.timer.start(RETRY_MS)  # the project changed while a write ran: write it after
             return
         meta = {"pid": os.getpid(), "path": str(self.doc.path) if self.doc.path else ""}
-        if self._written is not None and self._written[0] is self.doc.project:
-            if self._written[1] == meta:
-                return
+        written = self._written
+        if written is not None and written[0] is self.doc.project and written[1] == meta:
+            return  # this state is the autosave already
         self.writer = threading.Thread(
             target=self._write,
             args=(self.doc.project, meta, self._discards),
