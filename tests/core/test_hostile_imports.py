@@ -29,6 +29,9 @@ def _good_project(tmp_path):
     return path
 
 
+RATE = "a sampled tile's rate must be from 0.001"
+
+
 @pytest.mark.parametrize(
     "text, words",
     [
