@@ -139,3 +139,33 @@ def test_an_edit_error_from_placing_stays_an_edit_error(tmp_path):
     source.write_text("# rate=100\n0.1\n0.2\n")
     with pytest.raises(EditError, match="cannot start at -1"):
         import_file(edits.new_project(), source, at=-1.0)
+
+
+def _damaged_sounds(folder):
+    """A WAV cut in half (its header promises 8,000 frames) and a FLAC with flipped bytes."""
+    import soundfile as sf
+
+    x = np.sin(np.arange(8000) / 5) * 0.5
+    sf.write(folder / "whole.wav", x, 8000)
+    whole = (folder / "whole.wav").read_bytes()
+    (folder / "cut.wav").write_bytes(whole[: len(whole) // 2])
+    sf.write(folder / "whole.flac", x, 8000)
+    flac = bytearray((folder / "whole.flac").read_bytes())
+    for i in range(200, len(flac), 97):
+        flac[i] ^= 0x55
+    (folder / "bad.flac").write_bytes(bytes(flac))
+
+
+@pytest.mark.parametrize(
+    "name, words",
+    [("cut.wav", "cut.wav is truncated: its header promises more audio than the file holds"),
+     ("bad.flac", r"bad.flac could not be read to the end \(Error : flac decoder lost sync\)")],
+)  # fmt: skip
+def test_convert_refuses_a_damaged_sound_as_import_does(tmp_path, name, words):
+    from timeline.errors import ConvertError
+    from timeline.files.convert import convert_file
+
+    _damaged_sounds(tmp_path)
+    with pytest.raises(ConvertError, match=f"^{words}$"):
+        convert_file(tmp_path / name, tmp_path / "out.haptic")
+    assert not (tmp_path / "out.haptic").exists()
