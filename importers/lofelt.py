@@ -21,6 +21,7 @@ import numpy as np
 
 from importers import _vibration as vib
 from timeline.edits.vibration import Emphasis, VibrationDesign, design_of, design_placements
+from timeline.errors import ControlFlow
 from timeline.model import Project
 from timeline.plugins.file_formats import FormatError, Imported, Progress
 from timeline.signal.vibration_design import DEFAULT_FREQUENCY
@@ -28,7 +29,7 @@ from timeline.signal.vibration_design import DEFAULT_FREQUENCY
 MAX_WEAK_NOTES = 3  # weak emphases noted one by one; past these, one note counts the rest
 
 
-class _Unusual(Exception):
+class _Unusual(ControlFlow):
     """A breakpoint the fast path does not take: the checked path says what is wrong."""
 
 

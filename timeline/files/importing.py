@@ -167,10 +167,13 @@ def check_placed(project: Project, clip_ids: list[str]) -> None:
         if project.axis == "time" and clip.start < 0:
             raise EditError(f"a clip would start at {clip.start:g} s, before the timeline's 0")
         tile = project.tile(clip.tile_id)
+        _check_text(tile.name)
         if isinstance(tile, SplineTile) or (
             isinstance(tile, GeneratorTile) and tile.generator != "emphasis"
         ):
             probes.setdefault(tile.key, (tile, clip))
+    for track in project.tracks:
+        _check_text(track.name)
     if project.duration * project.rate > MAX_SAMPLES:
         raise EditError(
             f"the project would last {project.duration:.6g} {project.unit}, longer than one "
@@ -179,6 +182,17 @@ def check_placed(project: Project, clip_ids: list[str]) -> None:
         )
     for tile, clip in probes.values():
         _probe(tile, clip, project.rate)
+
+
+def _check_text(name: str) -> None:
+    """EditError for a name holding a lone surrogate (no character: neither printed nor saved)."""
+    if not name.isascii():
+        try:
+            name.encode("utf-8")
+        except UnicodeEncodeError:
+            raise EditError(
+                f"the name {name!r} is not valid text (it holds a lone surrogate)"
+            ) from None
 
 
 def _probe(tile: Tile, clip: Clip, rate: float) -> None:
