@@ -169,3 +169,10 @@ def test_convert_refuses_a_damaged_sound_as_import_does(tmp_path, name, words):
     with pytest.raises(ConvertError, match=f"^{words}$"):
         convert_file(tmp_path / name, tmp_path / "out.haptic")
     assert not (tmp_path / "out.haptic").exists()
+
+
+def test_a_lone_surrogate_in_a_name_is_refused_at_open():
+    p, _ = edits.add_track(edits.new_project(), "drive", "knob")
+    text = projectfile.dumps(p).replace('"name": "knob"', '"name": "a\\ud800b"')
+    with pytest.raises(projectfile.ProjectFileError, match=r"name is not text \(it holds a lone"):
+        projectfile.loads(text)
