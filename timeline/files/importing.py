@@ -139,6 +139,14 @@ def _place_batch(
     return project
 
 
+def place_checked(
+    project: Project, imported: Imported, name: str, **where: Any
+) -> tuple[Project, list[str]]:
+    """place(project, imported, **where), refused with one sentence naming the file `name` unless
+    every verb can use the result (check_placed): the editor's import."""
+    return _usable(place, project, imported, name, **where)
+
+
 def _usable(
     placer: Any, project: Project, imported: Imported, name: str, **where: Any
 ) -> tuple[Project, list[str]]:
