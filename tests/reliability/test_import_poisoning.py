@@ -66,7 +66,7 @@ def _run(argv: list[str]) -> tuple[int, str]:
 SLOW_OK = [HealthCheck.function_scoped_fixture, HealthCheck.too_slow]
 
 
-@settings(max_examples=count(12), deadline=None, suppress_health_check=SLOW_OK)
+@settings(max_examples=count(8), deadline=None, suppress_health_check=SLOW_OK)
 @given(st.one_of(csv_files(), haptic_files()))
 def test_an_import_leaves_a_project_every_verb_uses_or_is_refused(tmp_path, file) -> None:
     name, text = file
