@@ -27,15 +27,81 @@ from timeline.edits.vibration import (
     design_placements,
     sharpness_convention,
 )
+from timeline.errors import ControlFlow
 from timeline.model import Project
 from timeline.plugins.file_formats import FormatError, Imported, Progress
 from timeline.signal.vibration_design import DEFAULT_FREQUENCY
 
+MAX_WEAK_NOTES = 3  # weak emphases noted one by one; past these, one note counts the rest
 
-def _breakpoints(items: Any, key: str, where: str) -> list[dict[str, Any]]:
+
+class _Unusual(ControlFlow):
+    """A breakpoint the fast path does not take: the checked path says what is wrong."""
+
+
+def _breakpoints(items: Any, key: str, where: str) -> _Envelope:
+    """An envelope's breakpoints, each checked (times in 0..MAX_DURATION and never going back,
+    values and emphasis in 0..1), or a FormatError naming the first that is not.
+
+    One pass over plain dicts of floats (what every tool writes) with no text built per
+    breakpoint; anything else is read again by the checked path, for its sentence.
+    """
     if not isinstance(items, list):
         raise FormatError(f"{where}: the {key} envelope must be a list of breakpoints")
-    out = []
+    try:
+        return _fast(items, key)
+    except (_Unusual, KeyError, TypeError, OverflowError):
+        return _checked(items, key, where)
+
+
+class _Envelope:
+    """An envelope read: breakpoint times and values, and emphasis as (index, amp, frequency)."""
+
+    __slots__ = ("emphasis", "times", "values")
+
+    def __init__(self) -> None:
+        self.times: list[float] = []
+        self.values: list[float] = []
+        self.emphasis: list[tuple[int, float, float]] = []
+
+
+def _unit(value: Any, hi: float = 1.0) -> float:
+    """A plain JSON number within 0..hi as a float, else _Unusual."""
+    kind = type(value)
+    if kind is int:
+        value = float(value)
+    elif kind is not float:
+        raise _Unusual
+    if not 0.0 <= value <= hi:  # NaN fails too
+        raise _Unusual
+    return value
+
+
+def _fast(items: list[Any], key: str) -> _Envelope:
+    out = _Envelope()
+    times, values, emphasis = out.times, out.values, out.emphasis
+    previous = 0.0
+    longest = vib.MAX_DURATION
+    for k, bp in enumerate(items):
+        if type(bp) is not dict:
+            raise _Unusual
+        time = _unit(bp["time"], longest)
+        if time < previous:
+            raise _Unusual
+        previous = time
+        times.append(time)
+        values.append(_unit(bp[key]))
+        e = bp.get("emphasis")
+        if e is not None:
+            if type(e) is not dict:
+                raise _Unusual
+            emphasis.append((k, _unit(e["amplitude"]), _unit(e["frequency"])))
+    return out
+
+
+def _checked(items: list[Any], key: str, where: str) -> _Envelope:
+    """_fast with a sentence for the first breakpoint that is not valid."""
+    out = _Envelope()
     previous = 0.0
     for k, bp in enumerate(items):
         here = f"{where}: {key} breakpoint {k + 1}"
@@ -48,7 +114,8 @@ def _breakpoints(items: Any, key: str, where: str) -> list[dict[str, Any]]:
         if time < previous:
             raise FormatError(f"{here} goes back in time ({time:g} s after {previous:g} s)")
         previous = time
-        entry = {"time": time, "value": vib.number(bp[key], f"{here} {key}", 0.0, 1.0)}
+        out.times.append(time)
+        out.values.append(vib.number(bp[key], f"{here} {key}", 0.0, 1.0))
         emphasis = bp.get("emphasis")
         if emphasis is not None:
             if not isinstance(emphasis, dict):
@@ -56,11 +123,11 @@ def _breakpoints(items: Any, key: str, where: str) -> list[dict[str, Any]]:
             for field in ("amplitude", "frequency"):
                 if field not in emphasis:
                     raise FormatError(f"{here} emphasis has no {field}")
-            entry["emphasis"] = (
+            out.emphasis.append((
+                k,
                 vib.number(emphasis["amplitude"], f"{here} emphasis amplitude", 0.0, 1.0),
                 vib.number(emphasis["frequency"], f"{here} emphasis frequency", 0.0, 1.0),
-            )
-        out.append(entry)
+            ))  # fmt: skip
     return out
 
 
@@ -80,47 +147,43 @@ def read_with_convention(path: Path) -> tuple[VibrationDesign, list[str], str]:
     if "amplitude" not in envelopes:
         raise FormatError(f"{path.name} has no amplitude envelope")
     amplitude = _breakpoints(envelopes["amplitude"], "amplitude", path.name)
-    if len(amplitude) < 2:
-        count = "is empty" if not amplitude else "has one breakpoint"
+    frequency_items = envelopes.get("frequency")
+    frequency = (
+        None if frequency_items is None
+        else _breakpoints(frequency_items, "frequency", path.name)
+    )  # fmt: skip
+    convention = _convention(doc)
+    del doc, envelopes, frequency_items  # the parsed JSON goes before the design is built
+    if len(amplitude.times) < 2:
+        count = "is empty" if not amplitude.times else "has one breakpoint"
         raise FormatError(
             f"{path.name}: the amplitude envelope {count}; it needs at least two to last any time"
         )
-    first, last = amplitude[0]["time"], amplitude[-1]["time"]
+    first, last = amplitude.times[0], amplitude.times[-1]
     if last <= first:
         raise FormatError(
             f"{path.name}: the amplitude envelope lasts zero seconds "
             f"(every breakpoint is at {first:g} s)"
         )
     notes: list[str] = []
-    frequency = envelopes.get("frequency")
     if frequency is None:
-        frequency = []
+        frequency = _Envelope()
         notes.append(f"no frequency envelope: frequency {DEFAULT_FREQUENCY} assumed")
-    else:
-        frequency = _breakpoints(frequency, "frequency", path.name)
-    outside = [b["time"] for b in frequency if not first <= b["time"] <= last]
+    outside = sum(1 for t in frequency.times if not first <= t <= last)
     if outside:
         notes.append(
-            f"{len(outside)} frequency breakpoint(s) lie outside the amplitude envelope "
+            f"{outside} frequency breakpoint(s) lie outside the amplitude envelope "
             f"({first:g}-{last:g} s), which Meta's validator rejects"
         )
-    emphasis = []
-    for b in amplitude:
-        if "emphasis" in b:
-            level, freq = b["emphasis"]
-            if level < b["value"]:
-                notes.append(
-                    f"the emphasis at {b['time']:g} s ({level:g}) is weaker than its breakpoint "
-                    f"({b['value']:g}); it is written back at the breakpoint's level"
-                )
-            emphasis.append(Emphasis(b["time"], level, freq))
+    notes += _weak_notes(amplitude)
+    times = amplitude.times
     design = VibrationDesign(
-        tuple((b["time"], b["value"]) for b in amplitude),
-        tuple((b["time"], b["value"]) for b in frequency),
-        tuple(emphasis),
-        max(last, *(b["time"] for b in frequency)) if frequency else last,
+        tuple(zip(times, amplitude.values, strict=True)),
+        tuple(zip(frequency.times, frequency.values, strict=True)),
+        tuple(Emphasis(times[k], level, freq) for k, level, freq in amplitude.emphasis),
+        max(last, *frequency.times) if frequency.times else last,
     )
-    return design, notes, _convention(doc)
+    return design, notes, convention
 
 
 LINEAR_NOTE = "AHAP sharpness = frequency"  # metadata.description of a design read from Apple's
@@ -132,6 +195,24 @@ def _convention(doc: dict[str, Any]) -> str:
     meta = doc.get("metadata")
     ours = isinstance(meta, dict) and meta.get("editor") == "haptic-timeline"
     return "linear" if ours and meta.get("description") == LINEAR_NOTE else "sqrt"
+
+
+def _weak_notes(amplitude: _Envelope) -> list[str]:
+    """A note per emphasis weaker than its breakpoint (written back at the breakpoint's level),
+    the first MAX_WEAK_NOTES of them, then one counting the rest."""
+    times, values = amplitude.times, amplitude.values
+    weak = [(k, level) for k, level, _ in amplitude.emphasis if level < values[k]]
+    notes = [
+        f"the emphasis at {times[k]:g} s ({level:g}) is weaker than its breakpoint "
+        f"({values[k]:g}); it is written back at the breakpoint's level"
+        for k, level in weak[:MAX_WEAK_NOTES]
+    ]
+    if len(weak) > MAX_WEAK_NOTES:
+        notes.append(
+            f"{len(weak) - MAX_WEAK_NOTES:,} more emphases are weaker than their breakpoints; "
+            "they are written back at the breakpoints' levels"
+        )
+    return notes
 
 
 def design_document(design: VibrationDesign, convention: str = "sqrt") -> dict[str, Any]:

@@ -109,7 +109,7 @@ class Table:
         try:
             values = np.loadtxt(rows, delimiter=delimiter, ndmin=2, dtype=np.float64)
         except ValueError as exc:
-            detail = str(exc).splitlines()[0]
+            detail = str(exc).splitlines()[0].split("; use `usecols`")[0]  # numpy's own advice
             raise FormatError(f"{name} has a row that is not all numbers ({detail})") from None
         if self.names and len(self.names) != values.shape[1]:
             raise FormatError(

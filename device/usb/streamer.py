@@ -207,7 +207,7 @@ class Stream:
                 f"the USB haptic device's watchdog ramped the torque to zero at {at} because no "
                 "block arrived in time"
             )
-        faults = report.flags & p.FAULT_FLAGS
+        faults = report.flags & (p.FAULT_FLAGS | p.FLAG_NON_FINITE)  # NaN reached the device
         if faults or report.overruns:
             names = ", ".join(p.flag_names(faults | (p.FLAG_OVERRUN if report.overruns else 0)))
             raise DeviceFault(f"the USB haptic device reported {names} at {at}; playback stopped")

@@ -50,6 +50,9 @@ def window_medians(
 
 def envelope_breakpoints(x: np.ndarray, rate: float) -> tuple[Points, Points]:
     """Amplitude and normalised-frequency breakpoints of a waveform (fraction of full scale)."""
+    # Beyond 1e100 times full scale the envelope is 1 all the same; clipped, the squares and
+    # products below stay finite (a design with gains of 1e300 warned of overflow on stderr).
+    x = np.clip(x, -1e100, 1e100)
     padded = np.concatenate([[0.0], x, [0.0]])
     neighbours = padded[2:] + padded[:-2]
     width = max(3, int(round(ANALYSIS_WINDOW * rate)))

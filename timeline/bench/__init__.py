@@ -17,8 +17,7 @@ from timeline.plugins import discovery
 ORDER = (
     "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
     "accumulation", "edit-to-feel", "scale", "convert", "formats", "ahap-reader", "waves",
-    "design-drag",
-    "media", "compare", "convert-memory", "playback", "editor",
+    "design-drag", "media", "compare", "convert-memory", "readers", "playback", "editor",
 )  # fmt: skip
 
 BUILT_IN = {
@@ -37,6 +36,7 @@ BUILT_IN = {
     "media": "timeline.bench.project_media",
     "compare": "timeline.bench.compare_icons",
     "convert-memory": "timeline.bench.convert_memory",
+    "readers": "timeline.bench.readers",
     "playback": "timeline.bench.playback",
     "editor": "timeline.bench.editor",
 }

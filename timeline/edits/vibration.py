@@ -119,9 +119,12 @@ def design_placements(
     """What a reader of a design file returns: place_design's clips as placements."""
     envelopes, accents = _split(design)
     placements = [Placement(VibrationTile(envelopes, name, source, sharpness), kind=DRIVE)]
-    placements += [
-        Placement(emphasis_tile(e), start=e.time, kind=DRIVE, track=EMPHASIS) for e in accents
-    ]
+    tiles: dict[tuple[float, float], GeneratorTile] = {}  # equal emphases share one tile
+    for e in accents:
+        tile = tiles.get((e.amplitude, e.frequency))
+        if tile is None:
+            tile = tiles[e.amplitude, e.frequency] = emphasis_tile(e)
+        placements.append(Placement(tile, start=e.time, kind=DRIVE, track=EMPHASIS))
     tracks = (TrackInfo(EMPHASIS, EMPHASIS_TRACK, DRIVE),) if accents else ()
     return Imported(tuple(placements), tracks, notes)
 

@@ -10,6 +10,7 @@ files hold the design only.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -33,6 +34,11 @@ from timeline.model import Project
 
 MAX_SOUND_SECONDS = 3600.0  # a project keeps the source sound up to an hour long
 PROJECT_EXTENSIONS = (".htl",)
+# libsndfile's note of a chunk whose declared size runs past the end of the file, e.g.
+# "data : 40000 (should be 19979)": the file is truncated (as `import` judges it).
+_SHORT_CHUNK = re.compile(
+    r"^\s*(data|SSND|Riff size|RIFF|FORM)\s*:\s*(\d+)\s*\(should be (\d+)\)", re.MULTILINE
+)
 
 
 @dataclass(frozen=True)
@@ -44,6 +50,23 @@ class ConvertedSound:
     sound: np.ndarray | None
     gain_db: float = 0.0  # the gain staging applied to the design (timeline.analysis.staging)
     notes: tuple[str, ...] = ()  # what staging did or left for the user to decide
+
+
+def _check_complete(path: Path) -> None:
+    """ConvertError if the sound file's header promises more audio than it holds (what
+    `import` refuses; convert analysed the part there was)."""
+    import soundfile
+
+    try:
+        with soundfile.SoundFile(path) as f:
+            info = f.extra_info
+    except (soundfile.LibsndfileError, RuntimeError, TypeError, ValueError):
+        return  # not readable at all: the analysis says so in its own sentence
+    for match in _SHORT_CHUNK.finditer(info):
+        if int(match.group(3)) < int(match.group(2)):
+            raise ConvertError(
+                f"{path.name} is truncated: its header promises more audio than the file holds"
+            )
 
 
 def design_of_analysis(analysis: SoundAnalysis) -> VibrationDesign:
@@ -70,7 +93,14 @@ def analyse_sound_file(
     `staging` sets the design's level for a device (none: the sound's own level).
     """
     path = Path(path)
-    analysis = analyse_file(path, settings, progress)
+    _check_complete(path)
+    import soundfile
+
+    try:
+        analysis = analyse_file(path, settings, progress)
+    except soundfile.LibsndfileError as exc:  # a damaged stream found while decoding
+        reason = str(exc.error_string).rstrip(".")
+        raise ConvertError(f"{path.name} could not be read to the end ({reason})") from None
     gain_db, notes = 0.0, ()
     if staging is not None:
         staged = stage(analysis, staging)

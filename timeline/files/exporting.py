@@ -45,7 +45,7 @@ def project_layers(
     total = mixer.grid_length(0.0, project.duration, rate)
     memory.require(
         2 * 8 * total * len(mixer.active_tracks(project)),
-        f"exporting {total} samples per layer",
+        f"exporting {memory.count_text(total)} samples per layer",
         "export at a lower rate",
     )
     chunk = max(project.duration / CHUNKS, MIN_CHUNK_SAMPLES / rate)

@@ -11,11 +11,13 @@ import os
 from pathlib import Path
 from typing import Any, Protocol
 
+import numpy as np
+
 from timeline import edits
 from timeline.edits import markers as marker_edits
 from timeline.errors import EditError, FormatError, HapticTimelineError
 from timeline.files import gc_pause
-from timeline.model import Project
+from timeline.model import Clip, Project
 from timeline.model.markers import Marker
 from timeline.plugins.file_formats import (
     Imported,
@@ -25,6 +27,9 @@ from timeline.plugins.file_formats import (
     readers_for,
 )
 from timeline.plugins.track_kinds import DEFAULT_KIND, track_kind
+from timeline.tiles import GeneratorTile, SplineTile, Tile
+
+_PROBE_SAMPLES = 64  # samples of each new tile rendered to prove it renders (check_placed)
 
 
 class Arrange(Protocol):
@@ -95,7 +100,8 @@ def import_file(
     """
     _check_start(project, at)  # before the (maybe long) read
     imported = read_file(path, progress=progress, **options)
-    return place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
+    return _usable(place, project, imported, Path(path).name, kind=kind or DEFAULT_KIND, at=at,
+                   gain=gain)  # fmt: skip
 
 
 def place(
@@ -150,6 +156,83 @@ def _place_batch(
             tile_ids[id(tile)] = project.find_clip(clip_id)[1].tile_id
     clip_ids += placed
     return project
+
+
+def place_checked(
+    project: Project, imported: Imported, name: str, **where: Any
+) -> tuple[Project, list[str]]:
+    """place(project, imported, **where), refused with one sentence naming the file `name` unless
+    every verb can use the result (check_placed): the editor's import."""
+    return _usable(place, project, imported, name, **where)
+
+
+def _usable(
+    placer: Any, project: Project, imported: Imported, name: str, **where: Any
+) -> tuple[Project, list[str]]:
+    """placer(project, imported, **where), refused with one sentence naming the file unless every
+    verb can use the result (importing.check_placed)."""
+    placed, clip_ids = placer(project, imported, **where)
+    try:
+        check_placed(placed, clip_ids)
+    except EditError as exc:
+        raise FormatError(f"{name} cannot be imported: {exc}") from None
+    return placed, clip_ids
+
+
+def check_placed(project: Project, clip_ids: list[str]) -> None:
+    """Raise EditError unless the new clips are ones every verb can use: none starts before the
+    timeline's 0, the project stays short enough for one render at its rate (MAX_SAMPLES), and
+    each new closed-form tile (generator or spline; one per distinct shape) renders its first
+    samples as finite numbers: a guard against a shape its constructor let through but a
+    renderer cannot draw. Samples are finite by construction, and an emphasis is a bounded
+    pulse, so those are not probed (a .haptic file has one per emphasis)."""
+    from timeline.rendering.mixer import MAX_SAMPLES
+
+    probes: dict[str, tuple[Tile, Clip]] = {}
+    for clip_id in clip_ids:
+        clip = project.find_clip(clip_id)[1]
+        if project.axis == "time" and clip.start < 0:
+            raise EditError(f"a clip would start at {clip.start:g} s, before the timeline's 0")
+        tile = project.tile(clip.tile_id)
+        _check_text(tile.name)
+        if isinstance(tile, SplineTile) or (
+            isinstance(tile, GeneratorTile) and tile.generator != "emphasis"
+        ):
+            probes.setdefault(tile.key, (tile, clip))
+    for track in project.tracks:
+        _check_text(track.name)
+    if project.duration * project.rate > MAX_SAMPLES:
+        raise EditError(
+            f"the project would last {project.duration:.6g} {project.unit}, longer than one "
+            f"render holds at {project.rate:g} per {project.unit} "
+            f"({MAX_SAMPLES / project.rate:.6g} {project.unit})"
+        )
+    for tile, clip in probes.values():
+        _probe(tile, clip, project.rate)
+
+
+def _check_text(name: str) -> None:
+    """EditError for a name holding a lone surrogate (no character: neither printed nor saved)."""
+    if not name.isascii():
+        try:
+            name.encode("utf-8")
+        except UnicodeEncodeError:
+            raise EditError(
+                f"the name {name!r} is not valid text (it holds a lone surrogate)"
+            ) from None
+
+
+def _probe(tile: Tile, clip: Clip, rate: float) -> None:
+    """Render a clip's first samples of its tile (draft); EditError unless finite."""
+    from timeline.signal.render_presets import preset
+
+    n = max(1, min(_PROBE_SAMPLES, int(clip.duration * rate)))
+    try:
+        values = tile.render(clip.source_in, 1.0 / (rate * clip.stretch), n, preset("draft"))
+    except (ArithmeticError, ValueError, MemoryError) as exc:
+        raise EditError(f"tile {tile.name!r} cannot be rendered ({exc})") from None
+    if not np.all(np.isfinite(values)):
+        raise EditError(f"tile {tile.name!r} renders values that are not finite numbers")
 
 
 def _check_start(project: Project, at: float) -> None:
@@ -215,6 +298,7 @@ def import_into_project_file(
     imported = read_file(path, progress=progress, **options)
     if arrange is not None:
         imported = arrange.placements(project, imported)
-    project, clip_ids = place(project, imported, kind=kind or DEFAULT_KIND, at=at, gain=gain)
+    project, clip_ids = _usable(place, project, imported, Path(path).name,
+                                kind=kind or DEFAULT_KIND, at=at, gain=gain)  # fmt: skip
     projectfile.save(project, project_path)
     return clip_ids, imported.notes

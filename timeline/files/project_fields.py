@@ -33,7 +33,7 @@ def get(value: Any, key: str, kind: type, where: str) -> Any:
     """value[key], which must be of `kind` (str, list, dict or bool; never a bool for others)."""
     if type(value) is dict:  # the common case first: a value of exactly the wanted type
         item = value.get(key, _MISSING)
-        if type(item) is kind:
+        if type(item) is kind and (kind is not str or item.isascii()):
             return item
     value = obj(value, where)
     if key not in value:
@@ -41,6 +41,11 @@ def get(value: Any, key: str, kind: type, where: str) -> Any:
     item = value[key]
     if not isinstance(item, kind) or (kind is not bool and isinstance(item, bool)):
         raise FieldError(f"{where}.{key} should be {_NAMES[kind]}")
+    if kind is str:
+        try:
+            item.encode("utf-8")
+        except UnicodeEncodeError:  # "\ud800" in the JSON: no character, printed or saved
+            raise FieldError(f"{where}.{key} is not text (it holds a lone surrogate)") from None
     return item
 
 
@@ -100,7 +105,15 @@ def text(value: Any, key: str, where: str, default: str) -> str:
     """value[key] as a string (absent: default)."""
     if key not in obj(value, where):
         return default
-    return get(value, key, str, where)
+    item = get(value, key, str, where)
+    if not item.isascii():
+        try:
+            item.encode("utf-8")
+        except UnicodeEncodeError:  # "\ud800" in the JSON: no character, printed or saved
+            raise FieldError(
+                f"{where}.{key} is not valid text (it holds a lone surrogate)"
+            ) from None
+    return item
 
 
 def json_safe(value: Any, where: str) -> Any:

@@ -628,7 +628,9 @@ class MainWindow(QMainWindow):
         project = self.doc.project
         chosen = track_id if any(t.id == track_id for t in project.tracks) else None
         try:
-            project, clip_ids = importing.place(project, imported, at=at, track_id=chosen)
+            project, clip_ids = importing.place_checked(
+                project, imported, path.name, at=at, track_id=chosen
+            )
             project = into_gap(project, clip_ids, at)
         except HapticTimelineError as exc:
             self.messages.show_message(str(exc), "error")

@@ -53,6 +53,11 @@ def _over(
     return out
 
 
+def _factor(f: float) -> str:
+    """A scale factor for advice: two decimals, or two significant digits below 0.01."""
+    return f"{f:.2f}" if f >= 0.01 else f"{f:.2g}"
+
+
 def saturation(design: Sampled, info: DeviceInfo) -> list[Finding]:
     """|d| (drive, or the position torque table) beyond the device's maximum output."""
     d = design.terms.get("d")
@@ -63,7 +68,7 @@ def saturation(design: Sampled, info: DeviceInfo) -> list[Finding]:
     return _over(
         design, "torque-saturation", "d", np.abs(d) - limit, np.abs(d), limit, unit,
         f"the {design.names['d']} layer asks for more than the device's maximum output",
-        lambda v, lim: f"scale that part by {lim / v:.2f} or less (clip or track gain)",
+        lambda v, lim: f"scale that part by {_factor(lim / v)} or less (clip or track gain)",
     )  # fmt: skip
 
 

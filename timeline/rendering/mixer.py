@@ -321,7 +321,8 @@ class Mixer:
         q = preset(quality)
         if n > MAX_SAMPLES:
             raise HapticTimelineError(
-                f"{n} samples is too many for one render; use render_chunks for long ranges"
+                f"{memory.count_text(n)} samples is too many for one render (at most "
+                f"{MAX_SAMPLES:,}); render a shorter range or at a lower rate"
             )
         grid = _Grid(origin, first, rate, n, q, astuple(q), piece_size(rate))
         tile_keys: dict[str, str] = {}
@@ -330,7 +331,7 @@ class Mixer:
         layers = _layers(project, tracks, context)
         memory.require(
             n * len(layers) * PEAK_BYTES_PER_SAMPLE,
-            f"rendering {n} samples of {len(layers)} layer(s)",
+            f"rendering {memory.count_text(n)} samples of {len(layers)} layer(s)",
             "render a shorter range or at a lower rate",
         )
         try:

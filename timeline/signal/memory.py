@@ -62,6 +62,11 @@ def size_text(nbytes: float) -> str:
     return f"{int(nbytes)} bytes"
 
 
+def count_text(n: int) -> str:
+    """A sample count for people: in full up to 15 digits, beyond that as 3.2e+303."""
+    return str(n) if n < 10**15 else f"{n:.3g}"
+
+
 def require(nbytes: float, what: str, hint: str = "") -> None:
     """Raise one sentence if `what` would need more than the memory available now."""
     if nbytes < CHECK_ABOVE:

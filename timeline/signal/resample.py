@@ -20,6 +20,11 @@ _SINC_BETA = 9.0  # its Kaiser window: about -90 dB side lobes
 # A recording whose resampled whole is at most this many samples is resampled whole once per
 # (step, quality) and kept; its clips are read from that (longer ones are resampled clip by clip).
 WHOLE_SAMPLES = 2**20
+# soxr's margins become _SOXR_MARGIN / step output samples each when upsampling; past this many
+# (a recording at 0.005 Hz rendered at 10 kHz: 5e8), the wanted samples are summed directly
+# from the source by a windowed sinc instead, so the work follows the output, not the ratio.
+_MAX_MARGIN_OUTPUT = 2**20
+_DIRECT_CHUNK = 2**13  # output samples per pass of the direct sinc (64 taps each: 4 MiB)
 _WHOLE_BYTES = 64 * 2**20  # resampled recordings kept, least recently used dropped first
 
 
@@ -108,6 +113,9 @@ def _band_limited(
         # Evaluate the same points in ascending order and flip back.
         start = start + step * (n - 1)
         step = -step
+    if _SOXR_MARGIN / step > max(_MAX_MARGIN_OUTPUT, n):
+        out = _sinc_upsample(data, start, step, n)
+        return out[::-1] if reverse else out
     soxr_quality = "VHQ" if quality.resampler == "soxr-vhq" else "HQ"
     whole = _whole(data, step, soxr_quality)
     if whole is not None:
@@ -177,6 +185,35 @@ def forget_resampled() -> None:
     with _kept_lock:
         _kept.clear()
         _kept_bytes = 0
+
+
+def _sinc_upsample(data: np.ndarray, start: float, step: float, n: int) -> np.ndarray:
+    """data band-limited to its own Nyquist frequency at source indices start + i*step (step
+    well below 1), by a Kaiser-windowed sinc of _SINC_HALF taps either side: n * 64 products."""
+    out = np.zeros(n)
+    # only outputs within the filter's reach of the samples can be non-zero
+    first = max(0, math.ceil((-_SINC_HALF - start) / step))
+    last = min(n, math.floor((len(data) - 1 + _SINC_HALF - start) / step) + 1)
+    k = np.arange(-_SINC_HALF + 1, _SINC_HALF + 1)
+    for lo in range(first, last, _DIRECT_CHUNK):
+        x = start + step * np.arange(lo, min(lo + _DIRECT_CHUNK, last))
+        base = np.floor(x).astype(np.int64)
+        index = base[:, None] + k[None, :]
+        taps = np.interp(x[:, None] - index, *_sinc_table())
+        inside = (index >= 0) & (index < len(data))
+        values = np.where(inside, data[np.clip(index, 0, len(data) - 1)], 0.0)
+        out[lo : lo + len(x)] = np.einsum("ij,ij->i", taps, values)
+    return out
+
+
+@cache
+def _sinc_table() -> tuple[np.ndarray, np.ndarray]:
+    """The windowed sinc (Kaiser, beta _SINC_BETA, over +-_SINC_HALF) at 2**18 + 1 distances,
+    for linear interpolation (within 1e-7 of the exact taps)."""
+    d = np.linspace(-_SINC_HALF, _SINC_HALF, 2**18 + 1)
+    r = d / _SINC_HALF
+    window = np.i0(_SINC_BETA * np.sqrt(np.clip(1.0 - r * r, 0.0, None))) / np.i0(_SINC_BETA)
+    return d, np.sinc(d) * window
 
 
 @cache

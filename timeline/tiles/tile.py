@@ -24,6 +24,11 @@ from timeline.signal.splines import PiecewiseCubic, natural_cubic, pchip
 from timeline.tiles.vibration_tile import VibrationTile
 
 MAX_TILE_SAMPLES = 2**31  # ~16 GiB of float64; anything larger is refused as a hostile size
+# A sampled tile's rate (samples per second or per radian): from one sample every 1,000 units to
+# 1e9 per unit (beyond any recording); outside, a renderer's work grows with the ratio to the
+# output rate, not with what the output needs (docs/reliability.md).
+MIN_SAMPLE_RATE = 1e-3
+MAX_SAMPLE_RATE = 1e9
 
 
 def _check_duration(duration: float) -> float:
@@ -122,6 +127,11 @@ class SampledTile:
         rate = float(self.rate)
         if not math.isfinite(rate) or rate <= 0:
             raise EditError(f"a sampled tile's rate must be a positive number, not {self.rate!r}")
+        if not MIN_SAMPLE_RATE <= rate <= MAX_SAMPLE_RATE:
+            raise EditError(
+                f"a sampled tile's rate must be from {MIN_SAMPLE_RATE:g} to {MAX_SAMPLE_RATE:g} "
+                f"samples per second (or radian), not {rate:g}"
+            )
         data.setflags(write=False)
         object.__setattr__(self, "data", data)
         object.__setattr__(self, "rate", rate)
