@@ -3,6 +3,8 @@ Click a header to show its track in the inspector; drag it up or down to reorder
 
 from __future__ import annotations
 
+from typing import Any
+
 from PySide6.QtCore import QEvent, QObject, QPoint, Qt, Signal
 from PySide6.QtGui import QColor, QMouseEvent
 from PySide6.QtWidgets import (
@@ -152,7 +154,7 @@ class TrackHeader(QFrame):
     def _set_gain(self, value: float) -> None:
         self._apply("track gain", gain=value)
 
-    def _apply(self, label: str, **fields: object) -> None:
+    def _apply(self, label: str, **fields: Any) -> None:
         """Edit the track from this header; whatever the edit's fate, the next refresh shows
         the track as it then is (a refused edit leaves the widgets showing the old state)."""
         self._shown = None
