@@ -35,6 +35,7 @@ from timeline.plugins.device_protocol import (
     Progress,
     Telemetry,
 )
+from timeline.plugins.device_protocol.child_process import end_child
 
 START_SECONDS = 60.0  # a child that has not opened the device by then is not coming
 
@@ -141,14 +142,7 @@ class StreamProcess:
 
     def close(self) -> None:
         """Ask the child to stop the device and go; make sure it went."""
-        with suppress(OSError, ValueError):
-            self._to_child.send(("close",))
-        self.process.join(timeout=2.0)
-        if self.process.is_alive():
-            self.process.terminate()
-            self.process.join(timeout=2.0)
-        for conn in (self._to_child, self._from_child):
-            conn.close()
+        end_child(self.process, self._to_child, self._from_child)
 
 
 def serve(inbox: Connection, outbox: Connection, opener: Callable[..., Any], args: tuple) -> None:

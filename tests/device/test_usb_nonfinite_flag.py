@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import struct
+import zlib
+
 import numpy as np
 import pytest
 
@@ -20,11 +23,13 @@ def test_a_non_finite_flag_from_the_device_stops_playback(monkeypatch) -> None:
     real = device.receive
     blocks: list[bytes] = []
 
-    def receive(data: bytes) -> None:  # the third block "held" a NaN the device zeroed
-        real(data)
+    def receive(data: bytes) -> None:  # the third block holds a NaN (its CRC intact): zeroed
         blocks.append(data)
         if len(blocks) == 3:
-            device.flags |= p.FLAG_NON_FINITE
+            body = bytearray(data[:-4])
+            struct.pack_into("<f", body, p.BLOCK_HEADER_SIZE, float("nan"))
+            data = bytes(body) + struct.pack("<I", zlib.crc32(body))
+        real(data)
 
     monkeypatch.setattr(device, "receive", receive)
     steady = [CoefficientBlock(np.full(1000, 0.05), np.full(1000, 0.5), np.zeros(1000))] * 5

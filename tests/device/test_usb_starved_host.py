@@ -4,10 +4,7 @@ the interpreter lock (docs/usb-protocol.md, section 4), so the knob never runs d
 
 from __future__ import annotations
 
-import sys
-import threading
-from collections.abc import Iterator
-from contextlib import contextmanager, nullcontext
+from contextlib import AbstractContextManager, nullcontext
 from pathlib import Path
 
 import numpy as np
@@ -17,32 +14,9 @@ from timeline.plugins.device_protocol import Hand, open_device
 from timeline.rendering.playback import prepare
 
 PROJECT = Path(__file__).parents[2] / "projects" / "rising_resistance.htl"
-SLICE_SECONDS = 0.025  # how long the busy thread keeps the lock once it has it
 
 
-@contextmanager
-def busy_interpreter() -> Iterator[None]:
-    """A thread spinning in Python that hands the interpreter lock over every 25 ms only."""
-    before = sys.getswitchinterval()
-    stop = threading.Event()
-
-    def spin() -> None:
-        n = 0
-        while not stop.is_set():
-            n += 1
-
-    sys.setswitchinterval(SLICE_SECONDS)
-    thread = threading.Thread(target=spin, daemon=True, name="busy interpreter")
-    thread.start()
-    try:
-        yield
-    finally:
-        stop.set()
-        thread.join()
-        sys.setswitchinterval(before)
-
-
-def played(realtime: bool, busy: bool) -> tuple[np.ndarray, int]:
+def played(realtime: bool, busy: AbstractContextManager[None] | None) -> tuple[np.ndarray, int]:
     """The CLI's steps (open, prepare, warm up, play): torque reported, and samples the knob
     played from an empty queue."""
     project = load(PROJECT)
@@ -50,14 +24,14 @@ def played(realtime: bool, busy: bool) -> tuple[np.ndarray, int]:
     with open_device("usb", emulate=True, realtime=realtime) as device:
         playback = prepare(project, device.info, None, hand)
         device.warm_up()
-        with busy_interpreter() if busy else nullcontext():
+        with busy or nullcontext():
             telemetry = device.play(playback.program, hand)
     return telemetry.torque, device.underruns
 
 
-def test_a_real_time_knob_starved_of_the_interpreter_lock_does_not_underrun():
-    torque, underruns = played(realtime=True, busy=True)
+def test_a_real_time_knob_starved_of_the_interpreter_lock_does_not_underrun(busy_interpreter):
+    torque, underruns = played(realtime=True, busy=busy_interpreter())
     assert underruns == 0
-    expected, _ = played(realtime=False, busy=False)  # the same firmware, paced by the host's reads
+    expected, _ = played(realtime=False, busy=None)  # the same firmware, paced by the host's reads
     assert len(torque) == 20_000
     np.testing.assert_array_equal(torque, expected)

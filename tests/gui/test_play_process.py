@@ -4,11 +4,7 @@ crosses to it as the tracks and tiles that changed."""
 
 from __future__ import annotations
 
-import sys
-import threading
 import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 
 import numpy as np
 import pytest
@@ -17,30 +13,6 @@ from timeline import edits
 from timeline.gui.play_process import PlayProcess, delta, rebuild
 from timeline.plugins.device_protocol import Hand
 from timeline.tiles import generator
-
-SLICE_SECONDS = 0.025  # how long the busy thread keeps the lock once it has it
-
-
-@contextmanager
-def busy_interpreter() -> Iterator[None]:
-    """A thread spinning in Python that hands the interpreter lock over every 25 ms only."""
-    before = sys.getswitchinterval()
-    stop = threading.Event()
-
-    def spin() -> None:
-        n = 0
-        while not stop.is_set():
-            n += 1
-
-    sys.setswitchinterval(SLICE_SECONDS)
-    thread = threading.Thread(target=spin, daemon=True, name="busy interpreter")
-    thread.start()
-    try:
-        yield
-    finally:
-        stop.set()
-        thread.join()
-        sys.setswitchinterval(before)
 
 
 def two_tracks():
@@ -66,7 +38,7 @@ def test_a_project_crosses_as_the_tracks_and_tiles_that_changed():
     assert dict(rebuild(rebuilt, delta(quieter, more)).tiles) == dict(more.tiles)
 
 
-def test_the_sim_plays_on_time_from_its_process_while_the_editors_lock_is_held():
+def test_the_sim_plays_on_time_from_its_process_while_the_editors_lock_is_held(busy_interpreter):
     project, clip = two_tracks()
     project = edits.set_clip_gain(project, clip, 0.5)
     quieter = edits.set_clip_gain(project, clip, 0.125)

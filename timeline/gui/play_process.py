@@ -35,6 +35,7 @@ from immutables import Map
 from timeline.errors import HapticTimelineError
 from timeline.model import Project, Track
 from timeline.plugins.device_protocol import Hand, LiveTelemetry, open_device
+from timeline.plugins.device_protocol.child_process import end_child
 from timeline.rendering.mixer import Mixer
 
 from .job_errors import unexpected
@@ -173,14 +174,7 @@ class PlayProcess:
 
     def close(self) -> None:
         """Ask the child to go; make sure it went."""
-        with suppress(OSError, ValueError):
-            self._to_child.send(("close",))
-        self.process.join(timeout=2.0)
-        if self.process.is_alive():
-            self.process.terminate()
-            self.process.join(timeout=2.0)
-        self._to_child.close()
-        self._warmed.close()
+        end_child(self.process, self._to_child, self._warmed)
         self._from_child.close()
         self._from_child.cancel_join_thread()
 
