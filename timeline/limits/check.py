@@ -72,7 +72,7 @@ def check(
                      f"{MAX_CLIPS_COMPARED} clips only")  # fmt: skip
     steps = [
         lambda: device_checks.saturation(design, info),
-        lambda: device_checks.stability(design, info),
+        lambda: device_checks.stability(design, info, interrupt),
         lambda: device_checks.slew(design, info),
         lambda: device_checks.actuator_band(design, info, actuator),
         lambda: perception_checks.below_detection(design, info, actuator, hand),

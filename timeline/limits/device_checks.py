@@ -81,8 +81,11 @@ def local_stiffness(design: Sampled) -> np.ndarray:
     return np.append(slope, slope[-1])
 
 
-def stability(design: Sampled, info: DeviceInfo) -> list[Finding]:
-    """Stiffness above passivity, damping above its stable limit or negative, mass out of band."""
+def stability(
+    design: Sampled, info: DeviceInfo, interrupt: Callable[[], None] = lambda: None
+) -> list[Finding]:
+    """Stiffness above passivity, damping above its stable limit or negative, mass out of band;
+    `interrupt` is called between pieces of the whole-loop test (a stale check stops there)."""
     dyn = info.dynamics
     if dyn is None or info.kind != "kinesthetic" or not design.length:
         return []
@@ -130,7 +133,7 @@ def stability(design: Sampled, info: DeviceInfo) -> list[Finding]:
             lambda v, lim: f"keep the mass between {low:.3g} and {high:.3g} kg*m^2",
         )  # fmt: skip
     if declared:
-        out += whole_loop(design, dyn, period, k, b, m)
+        out += whole_loop(design, dyn, period, k, b, m, interrupt)
     return out
 
 
@@ -141,10 +144,11 @@ def whole_loop(
     k: np.ndarray,
     b: np.ndarray,
     m: np.ndarray | None,
+    interrupt: Callable[[], None] = lambda: None,
 ) -> list[Finding]:
     """Spans where every layer is inside its own limit but the loop with all of them is
     unstable with one of the docs' hands on the knob (or none): servo.whole_loop."""
-    loop = servo.whole_loop(dyn, period, k, b, m, servo.hand_loads())
+    loop = servo.whole_loop(dyn, period, k, b, m, servo.hand_loads(), interrupt)
     bad = loop.any & servo.layers_inside(dyn, period, k, b, m)
     if not bad.any():
         return []

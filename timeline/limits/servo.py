@@ -24,6 +24,7 @@ loop's characteristic polynomial.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -336,8 +337,17 @@ def _compiled():  # noqa: ANN202 - a numba dispatcher
     return njit(cache=True, error_model="numpy")(unstable_samples)
 
 
-def loop_radius(polys: np.ndarray) -> np.ndarray:
-    """The largest root magnitude of each row's polynomial (eigenvalues of its companion)."""
+def loop_radius(
+    polys: np.ndarray, interrupt: Callable[[], None] = lambda: None, rows: int = 8192
+) -> np.ndarray:
+    """The largest root magnitude of each row's polynomial (eigenvalues of its companion), found
+    `rows` at a time with `interrupt` called between them (a stale check stops there)."""
+    if polys.shape[0] > rows:
+        parts = []
+        for first in range(0, polys.shape[0], rows):
+            interrupt()
+            parts.append(loop_radius(polys[first : first + rows]))
+        return np.concatenate(parts)
     n = polys.shape[1] - 1
     comp = np.zeros((polys.shape[0], n, n))
     comp[:, 0, :] = -polys[:, 1:] / polys[:, :1]
@@ -365,12 +375,14 @@ def whole_loop(
     b: np.ndarray,
     m: np.ndarray | None,
     loads: tuple[Load, ...] = (FREE,),
+    interrupt: Callable[[], None] = lambda: None,
 ) -> WholeLoop:
     """Judge the linear loop (ideal sensor, no friction, no clamp) at every sample's (k, b, m)
     with each load. A negative stiffness is judged as 0: it pulls the knob away from rest, a
     slide the designer asked for (a detent's far side), not an oscillation; the clamp bounds it.
     Only the samples where (k, b, m) changes are tested (a run of equal samples is one test);
-    the growth is found (eigenvalues) only where the loop is unstable."""
+    the growth is found (eigenvalues) only where the loop is unstable, once per distinct
+    polynomial, with `interrupt` called between pieces."""
     n = k.size
     m = np.zeros(n) if m is None else m
     spring = np.maximum(k, 0.0)
@@ -391,7 +403,9 @@ def whole_loop(
             polys += np.outer(m[at], rows[3])
         finite = np.isfinite(polys).all(axis=1)
         radius = np.full(at.size, np.inf)
-        radius[finite] = loop_radius(polys[finite])
+        # equal samples (a held layer) have one polynomial: find each distinct one's roots once
+        distinct, which = np.unique(polys[finite], axis=0, return_inverse=True)
+        radius[finite] = loop_radius(distinct, interrupt)[which.reshape(-1)]
         worst[at] = np.fmax(worst[at], radius)
         unstable[load.name] = bad
     return WholeLoop(worst, unstable)
