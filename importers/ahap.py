@@ -59,6 +59,9 @@ DEFAULT_INTENSITY = 1.0
 DEFAULT_SHARPNESS = 0.5
 DUCKING = 0.8  # Meta's converter: intensity control x 0.8 at a point that carries an emphasis
 READ_TOLERANCE = 0.005  # amplitude: design vs the player's curve
+# The fit is held to its tolerance at the curve's samples; between them a fast attack may stray a
+# little further (0.0050025 seen), so breakpoints are fitted with a margin.
+FIT_TOLERANCE = 0.9 * READ_TOLERANCE
 GRID = 64  # samples per interval between knots where the read curve bends
 MAX_LEVELS = 64  # distinct event sharpness values whose clamping points are found exactly
 SAME_TIME = 1e-9  # s: a control point this close to a transient is at it (curve times are relative)
@@ -614,9 +617,9 @@ def read_design(path: Path) -> tuple[VibrationDesign, str, list[str]]:
     if continuous:
         player = _Player(continuous, intensity, sharpness)
         knots = _knots(player, controls)
-        amplitude = _pairs(*_squared(knots, player, 0, READ_TOLERANCE))
+        amplitude = _pairs(*_squared(knots, player, 0, FIT_TOLERANCE))
         if convention == "sqrt":
-            frequency = _pairs(*_squared(knots, player, 1, READ_TOLERANCE))
+            frequency = _pairs(*_squared(knots, player, 1, FIT_TOLERANCE))
         else:
             frequency = _pairs(*_stepped(knots, player, 1))
     emphasis = _emphasis(transients, intensity, sharpness, felt=convention == "linear")
