@@ -42,6 +42,7 @@ from timeline.errors import HapticTimelineError, RenderError
 from timeline.model import Clip, Project, Track
 from timeline.plugins.track_kinds import track_kind
 from timeline.rendering.clip_render import clip_samples, on_grid, render_shape
+from timeline.rendering.exact_sum import CANCELLING, Compensated
 from timeline.signal import memory
 from timeline.signal.render_presets import DEFAULT_QUALITY, QualityPreset, preset
 from timeline.tiles import Tile
@@ -274,7 +275,7 @@ class Mixer:
     """Renders projects, keeping clip-shape and per-window caches between calls."""
 
     def __init__(self, cache_bytes: int = 512 * 2**20) -> None:
-        self._shapes: _LRU[np.ndarray] = _LRU(cache_bytes)
+        self._shapes: _LRU[tuple[np.ndarray, float]] = _LRU(cache_bytes)  # values, peak
         self._windows: _LRU[_Window] = _LRU(cache_bytes)
         self._lock = threading.Lock()  # held while the caches or stats change, never to render
         self.stats = MixerStats()
@@ -508,6 +509,7 @@ class Mixer:
                 for p in members[b]:
                     self._add(out, p, max(p.i0, lo), min(p.i1, hi), grid, adder, scratch, stats,
                               pieces)  # fmt: skip
+                self._resum_cancelled(out, b, members[b], grid, stats)
                 _check_finite(acc, grid, lo)
         stats.block_sums += len(blocks)
 
@@ -523,6 +525,9 @@ class Mixer:
                 adder(out[p.i0 : p.i1], x[p.i0 - p.c0 : p.i1 - p.c0], p.weight, scratch)
             else:
                 self._add(out, p, p.i0, p.i1, grid, adder, scratch, stats)
+        blocks = list(range(-(-grid.n // BLOCK)))
+        for b, members in _members(window, blocks, grid.n).items():
+            self._resum_cancelled(out, b, members, grid, stats)
         _check_finite(out, grid, 0)
         stats.block_sums += -(-grid.n // BLOCK)
 
@@ -562,20 +567,59 @@ class Mixer:
 
     def _piece(self, p: _Placed, j: int, grid: _Grid, stats: MixerStats) -> np.ndarray:
         """Piece j of a clip's shape: grid.piece samples from sample j * grid.piece of the clip."""
+        return self._piece_and_peak(p, j, grid, stats)[0]
+
+    def _piece_and_peak(
+        self, p: _Placed, j: int, grid: _Grid, stats: MixerStats
+    ) -> tuple[np.ndarray, float]:
+        """Piece j of a clip's shape and its largest magnitude."""
         key = (p.shape, j)
         with self._lock:
-            values = self._shapes.get(key)
-        if values is not None:
-            return values
+            item = self._shapes.get(key)
+        if item is not None:
+            return item
         stats.shape_renders += 1
         size = grid.piece
         n = min(size, p.length - j * size)
         values = render_shape(p.clip, p.tile, p.phase + j * size / grid.rate, grid.rate, n,
                               grid.quality)  # fmt: skip
         values.setflags(write=False)
+        item = (values, float(np.max(np.abs(values))) if n else 0.0)
         with self._lock:
-            self._shapes.put(key, values, values.nbytes)
-        return values
+            self._shapes.put(key, item, values.nbytes)
+        return item
+
+    def _pieces_in(
+        self, p: _Placed, lo: int, hi: int, grid: _Grid, stats: MixerStats
+    ) -> Iterator[tuple[int, int, np.ndarray, float]]:
+        """(a, z, values on [a, z), the piece's peak) for each piece of p within [lo, hi)."""
+        size = grid.piece
+        a, z = max(p.i0, lo), min(p.i1, hi)
+        j = (a - p.c0) // size
+        while a < z:
+            start = p.c0 + j * size
+            x, peak = self._piece_and_peak(p, j, grid, stats)
+            e = min(z, start + len(x))
+            yield a, e, x[a - start : e - start], peak
+            a, j = e, j + 1
+
+    def _resum_cancelled(
+        self, out: np.ndarray, b: int, members: list[_Placed], grid: _Grid, stats: MixerStats
+    ) -> None:
+        """Sum block b again with compensation (exact_sum) if its terms' magnitudes may exceed
+        CANCELLING times its largest result; other blocks keep their plain sum, bit for bit."""
+        lo, hi = b * BLOCK, min((b + 1) * BLOCK, grid.n)
+        bound = 0.0
+        for p in members:
+            peak = max((k for *_, k in self._pieces_in(p, lo, hi, grid, stats)), default=0.0)
+            bound += abs(p.weight) * peak
+        if not bound > CANCELLING * float(np.max(np.abs(out[lo:hi]), initial=0.0)):
+            return
+        exact = Compensated(hi - lo)
+        for p in members:
+            for a, z, x, _ in self._pieces_in(p, lo, hi, grid, stats):
+                exact.add(a - lo, z - lo, x, p.weight)
+        out[lo:hi] = exact.result()
 
 
 def _numpy_add(out: np.ndarray, x: np.ndarray, weight: float, scratch: np.ndarray) -> None:
