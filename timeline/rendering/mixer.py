@@ -55,6 +55,7 @@ PEAK_BYTES_PER_SAMPLE = 48  # measured peak memory of one layer's render, per ou
 # under a tenth of such a render); smaller renders (every example) keep numpy and never load numba.
 COMPILED_SAMPLES = 50_000_000
 PIECE = 2**16  # about this many samples per piece of a clip's shape (see piece_size)
+MAX_PEAKS = 2**20  # pieces whose peaks are remembered (24 bytes each) before they are forgotten
 
 _V = TypeVar("_V")
 
@@ -275,7 +276,8 @@ class Mixer:
     """Renders projects, keeping clip-shape and per-window caches between calls."""
 
     def __init__(self, cache_bytes: int = 512 * 2**20) -> None:
-        self._shapes: _LRU[tuple[np.ndarray, float]] = _LRU(cache_bytes)  # values, peak
+        self._shapes: _LRU[np.ndarray] = _LRU(cache_bytes)
+        self._peaks: dict[tuple, float] = {}  # piece key -> its largest magnitude (exact_sum)
         self._windows: _LRU[_Window] = _LRU(cache_bytes)
         self._lock = threading.Lock()  # held while the caches or stats change, never to render
         self.stats = MixerStats()
@@ -284,6 +286,7 @@ class Mixer:
         """Forget all cached renders."""
         with self._lock:
             self._shapes.clear()
+            self._peaks.clear()
             self._windows.clear()
 
     def render(
@@ -567,41 +570,39 @@ class Mixer:
 
     def _piece(self, p: _Placed, j: int, grid: _Grid, stats: MixerStats) -> np.ndarray:
         """Piece j of a clip's shape: grid.piece samples from sample j * grid.piece of the clip."""
-        return self._piece_and_peak(p, j, grid, stats)[0]
-
-    def _piece_and_peak(
-        self, p: _Placed, j: int, grid: _Grid, stats: MixerStats
-    ) -> tuple[np.ndarray, float]:
-        """Piece j of a clip's shape and its largest magnitude."""
         key = (p.shape, j)
         with self._lock:
-            item = self._shapes.get(key)
-        if item is not None:
-            return item
+            values = self._shapes.get(key)
+        if values is not None:
+            return values
         stats.shape_renders += 1
         size = grid.piece
         n = min(size, p.length - j * size)
         values = render_shape(p.clip, p.tile, p.phase + j * size / grid.rate, grid.rate, n,
                               grid.quality)  # fmt: skip
         values.setflags(write=False)
-        item = (values, float(np.max(np.abs(values))) if n else 0.0)
+        peak = float(np.max(np.abs(values))) if n else 0.0
         with self._lock:
-            self._shapes.put(key, item, values.nbytes)
-        return item
+            self._shapes.put(key, values, values.nbytes)
+            if len(self._peaks) >= MAX_PEAKS:
+                self._peaks.clear()
+            self._peaks[key] = peak
+        return values
 
-    def _pieces_in(
-        self, p: _Placed, lo: int, hi: int, grid: _Grid, stats: MixerStats
-    ) -> Iterator[tuple[int, int, np.ndarray, float]]:
-        """(a, z, values on [a, z), the piece's peak) for each piece of p within [lo, hi)."""
-        size = grid.piece
+    def _peak(self, p: _Placed, j: int, grid: _Grid, stats: MixerStats) -> float:
+        """The largest magnitude in piece j of a clip's shape (rendered only if forgotten)."""
+        peak = self._peaks.get((p.shape, j))
+        if peak is None:
+            values = self._piece(p, j, grid, stats)
+            peak = float(np.max(np.abs(values))) if len(values) else 0.0
+        return peak
+
+    def _piece_range(self, p: _Placed, lo: int, hi: int, grid: _Grid) -> range:
+        """Indices of the pieces of p within samples [lo, hi)."""
         a, z = max(p.i0, lo), min(p.i1, hi)
-        j = (a - p.c0) // size
-        while a < z:
-            start = p.c0 + j * size
-            x, peak = self._piece_and_peak(p, j, grid, stats)
-            e = min(z, start + len(x))
-            yield a, e, x[a - start : e - start], peak
-            a, j = e, j + 1
+        return (
+            range((a - p.c0) // grid.piece, (z - 1 - p.c0) // grid.piece + 1) if a < z else range(0)
+        )
 
     def _resum_cancelled(
         self, out: np.ndarray, b: int, members: list[_Placed], grid: _Grid, stats: MixerStats
@@ -611,14 +612,19 @@ class Mixer:
         lo, hi = b * BLOCK, min((b + 1) * BLOCK, grid.n)
         bound = 0.0
         for p in members:
-            peak = max((k for *_, k in self._pieces_in(p, lo, hi, grid, stats)), default=0.0)
-            bound += abs(p.weight) * peak
+            pieces = self._piece_range(p, lo, hi, grid)
+            bound += abs(p.weight) * max(
+                (self._peak(p, j, grid, stats) for j in pieces), default=0.0
+            )
         if not bound > CANCELLING * float(np.max(np.abs(out[lo:hi]), initial=0.0)):
             return
         exact = Compensated(hi - lo)
         for p in members:
-            for a, z, x, _ in self._pieces_in(p, lo, hi, grid, stats):
-                exact.add(a - lo, z - lo, x, p.weight)
+            for j in self._piece_range(p, lo, hi, grid):
+                x = self._piece(p, j, grid, stats)
+                c = p.c0 + j * grid.piece
+                a, z = max(p.i0, lo, c), min(p.i1, hi, c + len(x))
+                exact.add(a - lo, z - lo, x[a - c : z - c], p.weight)
         out[lo:hi] = exact.result()
 
 
