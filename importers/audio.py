@@ -55,7 +55,29 @@ def _open(path: Path) -> sf.SoundFile:
 _FRAME_MISMATCH = re.compile(r"Frame count read from .*?\((\d+)\).*?\((\d+)\)", re.DOTALL)
 
 
+def _aiff_rate_exponent(path: Path) -> int | None:
+    """The 15-bit exponent of an AIFF's COMM sample rate (80-bit extended), None if not found."""
+    with open(path, "rb") as raw:
+        if raw.read(12)[8:12] not in (b"AIFF", b"AIFC"):
+            return None
+        for _ in range(1000):  # chunks before COMM: a few in any real file
+            head = raw.read(8)
+            if len(head) < 8:
+                return None
+            size = int.from_bytes(head[4:], "big")
+            if head[:4] == b"COMM":
+                field = raw.read(18)[8:10]
+                return int.from_bytes(field, "big") & 0x7FFF if len(field) == 2 else None
+            raw.seek(size + size % 2, 1)
+    return None
+
+
 def _check_complete(path: Path, f: sf.SoundFile) -> None:
+    if f.format == "AIFF" and _aiff_rate_exponent(path) == 0x7FFF:
+        # libsndfile reads a NaN or infinite rate as 67,108,864 Hz without a word
+        raise FormatError(
+            f"{path.name} declares a sample rate that is not a finite number (NaN or infinity)"
+        )
     for match in _SHORT_CHUNK.finditer(f.extra_info):
         if int(match.group(3)) < int(match.group(2)):
             raise FormatError(

@@ -63,3 +63,32 @@ def test_an_unexpected_exception_is_named():
         HapticTimelineError, match=r"^odd.otio could not be read: KeyError: 'header'$"
     ):
         crash_isolation.run(surprise, what="odd.otio")
+
+
+class _Unpicklable(FormatError):
+    def __reduce__(self):
+        raise TypeError("cannot pickle this error")
+
+
+def refuse_unpicklably() -> None:
+    raise _Unpicklable("x.otio has a clip whose gain is not a number")
+
+
+def lock() -> object:
+    import threading
+
+    return threading.Lock()  # pickle cannot carry a lock: TypeError
+
+
+def test_an_error_that_cannot_be_passed_back_still_says_its_sentence():
+    with pytest.raises(HapticTimelineError, match="^x.otio has a clip whose gain is not a number$"):
+        crash_isolation.run(refuse_unpicklably, what="x.otio")
+
+
+def test_a_result_that_cannot_be_passed_back_is_a_sentence_without_the_type_error():
+    with pytest.raises(HapticTimelineError) as info:
+        crash_isolation.run(lock, what="x.otio")
+    assert (
+        str(info.value)
+        == "x.otio could not be read: it holds data of a kind this program cannot use"
+    )

@@ -266,3 +266,18 @@ def test_a_report_that_breaks_the_protocol_stops_the_device(monkeypatch) -> None
     with pytest.raises(UsbDeviceError, match=r"sent a telemetry report that breaks the protocol"):
         knob.play(blocks_of(2000, **STEADY), Hand("hold"))
     assert emulated.knob.state == p.STATE_RAMPING
+
+
+def test_a_play_the_device_clamped_finishes_and_says_so_in_its_summary() -> None:
+    """A stiff spring under a turning hand asks for more than 50 mNm: the device clamps it (its
+    SATURATED flag, the safe behaviour), the play runs to its end and its summary says so."""
+    knob, _ = rig(EmulatedKnob(KnobParams(max_torque=0.05)))
+    usb = knob.play(blocks_of(2000, k=5.0), Hand.parse("turn:90"))
+    assert len(usb) == 2000
+    assert np.abs(usb.torque).max() == np.float32(0.05)
+    line = next(line for line in usb.summary() if line.startswith("saturated"))
+    assert line == (
+        f"saturated {usb.time_saturated:.4f} s: the device clamped its output to its limit there, "
+        "and the play went on"
+    )
+    assert usb.time_saturated > 0.01

@@ -53,3 +53,22 @@ def test_an_aiff_declaring_more_frames_than_it_holds_is_refused(tmp_path):
     path.write_bytes(bytes(data))
     with pytest.raises(FormatError, match=r"declares 2147483647 frames but it holds 1000"):
         FORMAT.read(path)
+
+
+@pytest.mark.parametrize("mantissa", [0xC000_0000_0000_0000, 0x8000_0000_0000_0000])  # NaN, inf
+def test_an_aiff_whose_rate_is_nan_or_infinite_is_refused_not_read_at_67_mhz(tmp_path, mantissa):
+    path = tmp_path / "x.aiff"
+    sf.write(path, np.zeros(4), 8000, subtype="PCM_16")
+    data = bytearray(path.read_bytes())
+    rate = data.find(b"COMM") + 16  # after the chunk header, channels, frames and sample size
+    struct.pack_into(">HQ", data, rate, 0x7FFF, mantissa)
+    path.write_bytes(bytes(data))
+    assert sf.info(path).samplerate == 67_108_864  # what libsndfile makes of it
+    with pytest.raises(FormatError, match=r"^x.aiff declares a sample rate that is not a finite"):
+        FORMAT.read(path)
+
+
+def test_an_honest_aiff_keeps_its_rate(tmp_path):
+    path = tmp_path / "x.aiff"
+    sf.write(path, TONE, 8000, subtype="PCM_16")
+    assert FORMAT.read(path).rate == 8000

@@ -108,12 +108,26 @@ def _serve(stdin: Any, stdout: Any) -> None:
     except Exception as exc:  # noqa: BLE001 - any parser failure becomes one sentence
         text = str(exc).splitlines()[0][:160] if str(exc) else ""
         message = ("fail", f"{type(exc).__name__}{': ' + text if text else ''}")
+    stdout.write(_answer(message, limit))
+    stdout.flush()
+
+
+def _answer(message: tuple[str, Any], limit: int) -> bytes:
+    """The message pickled so the parent can load it; else the same outcome in plain words."""
+    status, payload = message
     try:
         data = pickle.dumps(message)
-    except Exception as exc:  # noqa: BLE001 - e.g. a result too large to pickle within the limit
-        data = pickle.dumps(("fail", f"its result could not be passed back ({type(exc).__name__})"))
-    stdout.write(data)
-    stdout.flush()
+        if status == "raise":
+            pickle.loads(data)  # an error the parent could not rebuild would read as a crash
+        return data
+    except MemoryError:
+        return pickle.dumps(
+            ("fail", f"its parser needed more than {memory.size_text(limit)} of memory")
+        )
+    except Exception:  # noqa: BLE001 - a value pickle cannot carry
+        if status == "raise":  # the user's sentence, as the error every caller catches
+            return pickle.dumps(("raise", HapticTimelineError(str(payload))))
+        return pickle.dumps(("fail", "it holds data of a kind this program cannot use"))
 
 
 if __name__ == "__main__":

@@ -42,6 +42,7 @@ from timeline.errors import HapticTimelineError, RenderError
 from timeline.model import Clip, Project, Track
 from timeline.plugins.track_kinds import track_kind
 from timeline.rendering.clip_render import clip_samples, on_grid, render_shape
+from timeline.rendering.exact_sum import CANCELLING, Compensated
 from timeline.signal import memory
 from timeline.signal.render_presets import DEFAULT_QUALITY, QualityPreset, preset
 from timeline.tiles import Tile
@@ -54,6 +55,7 @@ PEAK_BYTES_PER_SAMPLE = 48  # measured peak memory of one layer's render, per ou
 # under a tenth of such a render); smaller renders (every example) keep numpy and never load numba.
 COMPILED_SAMPLES = 50_000_000
 PIECE = 2**16  # about this many samples per piece of a clip's shape (see piece_size)
+MAX_PEAKS = 2**20  # pieces whose peaks are remembered (24 bytes each) before they are forgotten
 
 _V = TypeVar("_V")
 
@@ -275,6 +277,7 @@ class Mixer:
 
     def __init__(self, cache_bytes: int = 512 * 2**20) -> None:
         self._shapes: _LRU[np.ndarray] = _LRU(cache_bytes)
+        self._peaks: dict[tuple, float] = {}  # piece key -> its largest magnitude (exact_sum)
         self._windows: _LRU[_Window] = _LRU(cache_bytes)
         self._lock = threading.Lock()  # held while the caches or stats change, never to render
         self.stats = MixerStats()
@@ -283,6 +286,7 @@ class Mixer:
         """Forget all cached renders."""
         with self._lock:
             self._shapes.clear()
+            self._peaks.clear()
             self._windows.clear()
 
     def render(
@@ -508,6 +512,7 @@ class Mixer:
                 for p in members[b]:
                     self._add(out, p, max(p.i0, lo), min(p.i1, hi), grid, adder, scratch, stats,
                               pieces)  # fmt: skip
+                self._resum_cancelled(out, b, members[b], grid, stats)
                 _check_finite(acc, grid, lo)
         stats.block_sums += len(blocks)
 
@@ -523,6 +528,9 @@ class Mixer:
                 adder(out[p.i0 : p.i1], x[p.i0 - p.c0 : p.i1 - p.c0], p.weight, scratch)
             else:
                 self._add(out, p, p.i0, p.i1, grid, adder, scratch, stats)
+        blocks = list(range(-(-grid.n // BLOCK)))
+        for b, members in _members(window, blocks, grid.n).items():
+            self._resum_cancelled(out, b, members, grid, stats)
         _check_finite(out, grid, 0)
         stats.block_sums += -(-grid.n // BLOCK)
 
@@ -573,9 +581,51 @@ class Mixer:
         values = render_shape(p.clip, p.tile, p.phase + j * size / grid.rate, grid.rate, n,
                               grid.quality)  # fmt: skip
         values.setflags(write=False)
+        peak = float(np.max(np.abs(values))) if n else 0.0
         with self._lock:
             self._shapes.put(key, values, values.nbytes)
+            if len(self._peaks) >= MAX_PEAKS:
+                self._peaks.clear()
+            self._peaks[key] = peak
         return values
+
+    def _peak(self, p: _Placed, j: int, grid: _Grid, stats: MixerStats) -> float:
+        """The largest magnitude in piece j of a clip's shape (rendered only if forgotten)."""
+        peak = self._peaks.get((p.shape, j))
+        if peak is None:
+            values = self._piece(p, j, grid, stats)
+            peak = float(np.max(np.abs(values))) if len(values) else 0.0
+        return peak
+
+    def _piece_range(self, p: _Placed, lo: int, hi: int, grid: _Grid) -> range:
+        """Indices of the pieces of p within samples [lo, hi)."""
+        a, z = max(p.i0, lo), min(p.i1, hi)
+        return (
+            range((a - p.c0) // grid.piece, (z - 1 - p.c0) // grid.piece + 1) if a < z else range(0)
+        )
+
+    def _resum_cancelled(
+        self, out: np.ndarray, b: int, members: list[_Placed], grid: _Grid, stats: MixerStats
+    ) -> None:
+        """Sum block b again with compensation (exact_sum) if its terms' magnitudes may exceed
+        CANCELLING times its largest result; other blocks keep their plain sum, bit for bit."""
+        lo, hi = b * BLOCK, min((b + 1) * BLOCK, grid.n)
+        bound = 0.0
+        for p in members:
+            pieces = self._piece_range(p, lo, hi, grid)
+            bound += abs(p.weight) * max(
+                (self._peak(p, j, grid, stats) for j in pieces), default=0.0
+            )
+        if not bound > CANCELLING * float(np.max(np.abs(out[lo:hi]), initial=0.0)):
+            return
+        exact = Compensated(hi - lo)
+        for p in members:
+            for j in self._piece_range(p, lo, hi, grid):
+                x = self._piece(p, j, grid, stats)
+                c = p.c0 + j * grid.piece
+                a, z = max(p.i0, lo, c), min(p.i1, hi, c + len(x))
+                exact.add(a - lo, z - lo, x[a - c : z - c], p.weight)
+        out[lo:hi] = exact.result()
 
 
 def _numpy_add(out: np.ndarray, x: np.ndarray, weight: float, scratch: np.ndarray) -> None:

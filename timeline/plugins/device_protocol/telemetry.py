@@ -169,15 +169,18 @@ class Telemetry:
         its peak is given in percent and no energy is reported.
         """
         lines = [f"played {len(self) / self.rate:.3f} s ({len(self)} samples at {self.rate:g} Hz)"]
+        clamped = ""
+        if self.time_saturated > 0:  # the device clamping safely: said, never a stop
+            clamped = ": the device clamped its output to its limit there, and the play went on"
         if kind == "vibrotactile":
             lines += [
                 f"peak output {self.peak_torque * 100:.1f}% of full scale",
-                f"at full scale {self.time_saturated:.4f} s",
+                f"at full scale {self.time_saturated:.4f} s{clamped}",
             ]
         else:
             lines += [
                 f"peak torque {self.peak_torque * 1e3:.2f} mNm",
-                f"saturated {self.time_saturated:.4f} s",
+                f"saturated {self.time_saturated:.4f} s{clamped}",
                 self._energy_line(),
             ]
         lines += [f"flag {f.describe()}" for f in self.flags] or ["no stability flags"]
