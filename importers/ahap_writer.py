@@ -47,12 +47,15 @@ Points = list[tuple[float, float]]
 
 def _offset(a: float, b: float) -> float:
     """b - a, nudged by an ulp where needed so that a + offset == b in floating point (the
-    player adds a curve's or event's start to the relative times written)."""
+    player adds a curve's or event's start to the relative times written); where no offset adds
+    up to b exactly (0.438 + x skips 0.969), the one ending just before b, so nothing written to
+    end at b (an event, the controls set for a transient there) reaches past it."""
     d = b - a
-    for candidate in (d, math.nextafter(d, math.inf), math.nextafter(d, -math.inf)):
+    down = math.nextafter(d, -math.inf)
+    for candidate in (d, math.nextafter(d, math.inf), down):
         if a + candidate == b:
             return candidate
-    return d
+    return d if a + d < b else down
 
 
 class _Piecewise:

@@ -74,7 +74,11 @@ def test_ahap_round_trip_stays_within_the_stated_bound(design):
     back = _round_trip(design, ".ahap")
     t0, t1 = design.amplitude[0][0], design.amplitude[-1][0]
     grid = np.linspace(t0, t1, 4001)
-    error = np.abs(design.amplitude_at(grid) - back.amplitude_at(grid))
+    # an event's end is Time + EventDuration in floating point, and no duration may add up to the
+    # design's end exactly (0.438 + x skips 0.969): an envelope ending an ulp early is read there
+    back_end = back.amplitude[-1][0] if back.amplitude else t1
+    at = np.minimum(grid, back_end) if 0 < t1 - back_end <= 1e-12 else grid
+    error = np.abs(design.amplitude_at(grid) - back.amplitude_at(at))
     bound = WRITE_TOLERANCE + READ_TOLERANCE + 1e-9
     # ducking at an emphasis changes the player's curve next to it only where Meta's
     # convention moves the control point, which reading undoes exactly: no allowance needed
