@@ -21,6 +21,12 @@ deg = math.radians
 # slope (0.216 N*m/rad).
 WALL = 0.8
 WALL_DAMPING = 0.3
+# The damping and mass lanes' own full scales: a knob's light damping (tens of uN*m*s/rad) and
+# mass (a few g*cm^2) are small beside what the device renders (the kinds' full scales, 0.2
+# N*m*s/rad and 2.8e-5 kg*m^2), so these lanes span 0.1 mNm*s/rad and 100 g*cm^2 and their
+# clips' gains read as fractions of that.
+LIGHT_DAMPING = 1e-4  # N*m*s/rad
+LIGHT_MASS = 1e-5  # kg*m^2
 
 
 def fan_knob() -> Project:
@@ -34,6 +40,8 @@ def fan_knob() -> Project:
     p, torque = edits.add_track(p, "torque", "Walls and detents")
     p, damping = edits.add_track(p, "damping", "Damping")
     p, mass = edits.add_track(p, "mass", "Mass")
+    p = edits.set_track(p, damping, full_scale=LIGHT_DAMPING)
+    p = edits.set_track(p, mass, full_scale=LIGHT_MASS)
     p, wall = edits.add_tile(p, generator("wall", deg(20), "wall", edge=0.0, width=1.0), "Scratch")
     p, detents = edits.add_tile(
         p, generator("detents", deg(240), "four detents", count=4, phase=-0.5), "Scratch"
@@ -80,6 +88,7 @@ def rising_resistance() -> Project:
     p = edits.new_project("time", title="Rising resistance")
     p, stiffness = edits.add_track(p, "stiffness", "Spring")
     p, damping = edits.add_track(p, "damping", "Damping")
+    p = edits.set_track(p, damping, full_scale=LIGHT_DAMPING)
     p, ramp = edits.add_tile(p, generator("ramp", 2.0, "ramp up", start=0.0, end=1.0), "Scratch")
     p, swell = edits.add_tile(
         p, spline([(0.0, 0.0), (1.0, 0.3), (2.0, 1.0)], 2.0, "pchip", "swell"), "Scratch"

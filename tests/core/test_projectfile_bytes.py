@@ -1,11 +1,13 @@
 """The bytes of a saved project are pinned: a small project of every field against a golden file.
 
-tests/golden/current.htl (schema 4) was written by `small_project()` saved with the code that
-brought the binary appendix: saving the same project must give the same bytes, its JSON must be
-dumps' but for the recording (raw in the appendix there, base64 in dumps), and loading it must
-give the same project. tests/golden/schema3.htl, the same project written by the code before the
-clip schema became one table (schema 3, samples as base64), must still load as that project. A
-clip's absent fields take Clip's defaults.
+tests/golden/current.htl (schema 5) was written by `small_project()` saved with the code that
+raised the damping and mass full scales: saving the same project must give the same bytes, its
+JSON must be dumps' but for the recording (raw in the appendix there, base64 in dumps), and
+loading it must give the same project. tests/golden/schema4.htl (the same project saved by the
+code that brought the binary appendix) and schema3.htl (written by the code before the clip
+schema became one table, samples as base64) must still load as that project, but for their
+damping track of the kind's full scale, pinned to the old 1e-4 N*m*s/rad so it renders as it
+did. A clip's absent fields take Clip's defaults.
 """
 
 from __future__ import annotations
@@ -22,13 +24,15 @@ from timeline import edits
 from timeline.edits import markers
 from timeline.errors import FieldError
 from timeline.files import media, projectfile
-from timeline.model import Clip, Project
+from timeline.model import Clip, Project, Track
+from timeline.plugins.track_kinds import track_kind
 from timeline.signal.vibration_design import Emphasis, VibrationDesign
 from timeline.tiles import SampledTile, generator, spline
 from timeline.tiles.vibration_tile import VibrationTile
 
 GOLDEN = Path(__file__).resolve().parents[1] / "golden" / "current.htl"
 SCHEMA3 = GOLDEN.with_name("schema3.htl")
+SCHEMA4 = GOLDEN.with_name("schema4.htl")
 
 
 def small_project() -> Project:
@@ -88,9 +92,29 @@ def test_the_pinned_json_is_dumps_but_for_the_recording_kept_raw():
     assert media.decode(b64, "ramp").tobytes() == appendix
 
 
-@pytest.mark.parametrize("golden", [GOLDEN, SCHEMA3])
-def test_the_pinned_file_loads_as_the_project(golden):
-    assert projectfile.load(golden) == small_project()
+def test_the_pinned_file_loads_as_the_project():
+    assert projectfile.load(GOLDEN) == small_project()
+
+
+def _damping_pinned(tracks: tuple[Track, ...]) -> tuple[Track, ...]:
+    return tuple(
+        dataclasses.replace(t, full_scale=1e-4) if t.kind == "damping" else t for t in tracks
+    )
+
+
+@pytest.mark.parametrize("golden", [SCHEMA3, SCHEMA4])
+def test_an_older_file_loads_with_its_damping_full_scale_pinned(golden):
+    project, loaded = small_project(), projectfile.load(golden)
+    damping = next(t for t in loaded.tracks if t.kind == "damping")
+    assert damping.full_scale == 1e-4 and track_kind("damping").full_scale == 0.2
+    assert next(t for t in loaded.tracks if t.kind == "mass").full_scale == 0.25  # set: kept
+    assert loaded == dataclasses.replace(
+        project,
+        tracks=_damping_pinned(project.tracks),
+        variants=tuple(
+            dataclasses.replace(v, tracks=_damping_pinned(v.tracks)) for v in project.variants
+        ),
+    )
 
 
 def test_the_schema_3_file_keeps_its_samples_as_base64():

@@ -39,7 +39,8 @@ from timeline.tiles import GeneratorTile, SampledTile, SplineTile, Tile
 from timeline.tiles.vibration_tile import VibrationTile
 
 FORMAT = "haptic-timeline"
-SCHEMA = 4  # 2: vibration tiles; 3: markers and the loop region; 4: the binary appendix
+SCHEMA = 5  # 2: vibration tiles; 3: markers and the loop region; 4: the binary appendix;
+# 5: damping and mass full scales raised to what the device renders
 MAX_FILE_BYTES = 4 * 2**30
 
 
@@ -61,11 +62,54 @@ def _schema_3_to_4(doc: dict) -> dict:
     return {**doc, "schema": 4}
 
 
+# The damping and mass kinds' full scales up to schema 4 (N*m*s/rad, kg*m^2), for old files.
+_SCHEMA_4_FULL_SCALES = {"damping": 1e-4, "mass": 1e-5}
+
+
+def _pinned_tracks(tracks: Any) -> Any:
+    """A list of track dicts with an absent or null full scale of a damping or mass track set to
+    that kind's schema-4 full scale; anything malformed is left for the reader to report."""
+    if not isinstance(tracks, list):
+        return tracks
+    pinned = []
+    for track in tracks:
+        kind = track.get("kind") if isinstance(track, dict) else None
+        if (
+            isinstance(kind, str)
+            and kind in _SCHEMA_4_FULL_SCALES
+            and track.get("full_scale") is None
+        ):
+            track = {**track, "full_scale": _SCHEMA_4_FULL_SCALES[kind]}
+        pinned.append(track)
+    return pinned
+
+
+def _schema_4_to_5(doc: dict) -> dict:
+    """Schema 5 raised the damping and mass kinds' full scales (0.2 N*m*s/rad, 2.8e-5 kg*m^2):
+    an older damping or mass track of the kind's full scale keeps its old one, in the project
+    and in every variant, so it renders as it did."""
+    body = doc.get("project")
+    if not isinstance(body, dict):
+        return {**doc, "schema": 5}
+    body = {**body}
+    if "tracks" in body:
+        body["tracks"] = _pinned_tracks(body["tracks"])
+    if isinstance(body.get("variants"), list):
+        body["variants"] = [
+            {**v, "tracks": _pinned_tracks(v["tracks"])}
+            if isinstance(v, dict) and "tracks" in v
+            else v
+            for v in body["variants"]
+        ]
+    return {**doc, "schema": 5, "project": body}
+
+
 # Upgrade functions keyed by the schema version they read; each returns the next version's dict.
 MIGRATIONS: dict[int, Callable[[dict], dict]] = {
     1: _schema_1_to_2,
     2: _schema_2_to_3,
     3: _schema_3_to_4,
+    4: _schema_4_to_5,
 }
 
 

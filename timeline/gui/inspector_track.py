@@ -25,7 +25,8 @@ class TrackPage(QWidget):
         self.name.setToolTip("the track's name; type and press Enter")
         self.name.editingFinished.connect(self._rename)
         self.gain = NumberField(self._set_gain, 4, prefix="x", bounds=(-100.0, 100.0), tip="gain")
-        self.full_scale = NumberField(self._set_full_scale, 4, bounds=(-1e9, 1e9))
+        # 6 decimals: a light damping lane's 0.001745 mNm*s/deg (1e-4 N*m*s/rad) shows
+        self.full_scale = NumberField(self._set_full_scale, 6, bounds=(-1e9, 1e9))
         form = QFormLayout(self)
         form.setContentsMargins(0, 0, 0, 0)
         form.addRow(self.title)
