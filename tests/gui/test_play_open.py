@@ -3,6 +3,8 @@ Play sends only a delta and plays the new project; the process ends when the app
 
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 import pytest
 from PySide6.QtWidgets import QApplication
@@ -24,14 +26,48 @@ def quiet_sine():
     return edits.set_clip_gain(project, clip, 0.25)
 
 
+def saved(project, folder):
+    path = folder / "second.htl"
+    projectfile.save(project, path)
+    return path
+
+
+def quiet_peak(win) -> float:
+    """The peak of the window's project as rendered at the device's rate."""
+    project, rate = win.doc.project, win.player.device.info.rate
+    peak = np.abs(LiveStream(project, rate, 0.0, 0.4).render(project, 0.0, 0.4).d).max()
+    assert peak == pytest.approx(0.25 * 0.18, rel=1e-2)  # a quarter of the sine's 0.18 N*m
+    return peak
+
+
+def peak(torque: list) -> float:
+    return np.abs(np.concatenate(torque)).max()
+
+
+def test_a_play_during_the_hand_over_plays_in_the_editors_process(
+    window, qtbot, tmp_path, monkeypatch
+):
+    win, player = window, window.player
+    crossing = threading.Event()
+    monkeypatch.setattr(PlayProcess, "warm", lambda *args: crossing.wait(20.0))  # still crossing
+    try:
+        assert win.open_path(saved(quiet_sine(), tmp_path))
+        torque = []
+        player.telemetry.connect(lambda _angle, t: torque.append(t))
+        win.play_stop(0.0)
+        assert player._remote is None and player._thread is not None  # here, not in the child
+        qtbot.waitUntil(lambda: not player.playing, timeout=20_000)
+    finally:
+        crossing.set()
+    assert peak(torque) == pytest.approx(quiet_peak(win), rel=1e-3)
+
+
 def test_an_opened_project_plays_from_a_delta_and_the_process_ends_at_quit(
     window, qtbot, tmp_path, monkeypatch
 ):
     win, player = window, window.player
-    qtbot.waitUntil(lambda: player._handed.is_set(), timeout=60_000)  # the start-up hand-over
-    path = tmp_path / "second.htl"
-    projectfile.save(quiet_sine(), path)
-    assert win.open_path(path)
+    qtbot.waitUntil(lambda: not player._warm_running, timeout=60_000)  # the start-up warm-up
+    assert win.open_path(saved(quiet_sine(), tmp_path))
     qtbot.waitUntil(lambda: player._handed.is_set(), timeout=60_000)  # crossed in the background
     sent = []
     send = PlayProcess.send
@@ -49,11 +85,7 @@ def test_an_opened_project_plays_from_a_delta_and_the_process_ends_at_quit(
     kind, change = sent[0]
     assert kind == "play" and change.tiles == {} and change.gone == ()
     assert change.tracks == tuple(t.id for t in win.doc.project.tracks)  # ids only: no track
-    project = win.doc.project
-    rate = player.device.info.rate
-    expected = np.abs(LiveStream(project, rate, 0.0, 0.4).render(project, 0.0, 0.4).d).max()
-    assert expected == pytest.approx(0.25 * 0.18, rel=1e-2)  # a quarter of the sine's 0.18 N*m
-    assert np.abs(np.concatenate(torque)).max() == pytest.approx(expected, rel=1e-3)
+    assert peak(torque) == pytest.approx(quiet_peak(win), rel=1e-3)
     process = player_module._Shared.process
     assert process is not None
     win.close()
