@@ -249,20 +249,18 @@ def write_design(design: VibrationDesign, path: Path, convention: str = "sqrt") 
 
 _MARK = "\x00breakpoints of "  # stands for an envelope's list in the skeleton's text
 _CHUNK = 4096  # breakpoints formatted per write
+_ENCODER = json.JSONEncoder(indent=2, allow_nan=False)  # what json.dumps(indent=2, ...) uses
 
 
 def _write_list(file: Any, items: Iterator[dict[str, Any]], pad: str) -> None:
-    """A non-empty list of breakpoints as json.dumps(indent=2) writes it at indentation `pad`."""
-    inner = pad + "  "
+    """A non-empty list of breakpoints as json.dumps(indent=2) writes it at indentation `pad`:
+    each chunk encoded as a list of its own, its lines indented by `pad`."""
     file.write("[\n")
-    first = True
+    separator = ""
     for chunk in iter(lambda: list(islice(items, _CHUNK)), []):
-        lines = (
-            inner + json.dumps(bp, indent=2, allow_nan=False).replace("\n", "\n" + inner)
-            for bp in chunk
-        )
-        file.write(("" if first else ",\n") + ",\n".join(lines))
-        first = False
+        text = _ENCODER.encode(chunk)  # "[\n  {...},\n  {...}\n]"
+        file.write(separator + pad + text[2:-2].replace("\n", "\n" + pad))
+        separator = ",\n"
     file.write("\n" + pad + "]")
 
 
