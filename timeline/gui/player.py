@@ -11,7 +11,7 @@ The stream counts blocks handed over later than the lead (what a real knob feels
 underrun); the player names them in a notice while playing and when the play ends. Once the
 window has painted, `warm_up` loads the device's compiled code and renders the first chunk
 ahead on a background thread, so the first block goes out within a few ms of Play; when the
-window's project is replaced (open, new, revert), `project_replaced` warms up on the new one.
+window's project is replaced (open, new, recover), `project_replaced` warms up on the new one.
 
 A time project on the simulated knob plays from a process of its own (play_process), one for
 the editor's process, so the GUI's hold on the interpreter lock cannot delay a block: `stream` is
@@ -210,7 +210,7 @@ class Player(QObject):
                 self._warm.start()
 
     def project_replaced(self, project: Project) -> None:
-        """The window holds another project (open, new, revert): hand it to the play process
+        """The window holds another project (open, new, recover): hand it to the play process
         in the background, so the next Play sends only what changed since."""
         self.stop()
         self.warm_up(project)
