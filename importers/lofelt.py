@@ -13,7 +13,10 @@ to the envelope's level where it was weaker, as Meta's validator requires.
 
 from __future__ import annotations
 
+import json
 from collections import deque
+from collections.abc import Iterator, Sequence
+from itertools import islice
 from pathlib import Path
 from typing import Any
 
@@ -219,14 +222,50 @@ def design_document(design: VibrationDesign, convention: str = "sqrt") -> dict[s
     """A v1 .haptic document for a design (emphasis on amplitude breakpoints at their times);
     a design in Apple's sharpness convention says so in its metadata, so an AHAP written from
     the file again keeps it."""
-    amplitude = [{"time": t, "amplitude": v} for t, v in design.amplitude]
-    if len(amplitude) < 2 or amplitude[-1]["time"] <= amplitude[0]["time"]:
-        # Meta refuses an envelope of fewer than two breakpoints or no length: a silent one
-        # spanning the design stands in, keeping the emphasis and frequency envelope.
-        amplitude = [{"time": 0.0, "amplitude": 0.0}, {"time": design.duration, "amplitude": 0.0}]
-    envelopes: dict[str, Any] = {"amplitude": _with_emphasis(amplitude, design.emphasis)}
-    if design.frequency:
-        envelopes["frequency"] = [{"time": t, "frequency": v} for t, v in design.frequency]
+    doc = _skeleton(design, convention)
+    envelopes = doc["signals"]["continuous"]["envelopes"]
+    for name, points in _envelope_points(design).items():
+        envelopes[name] = list(points)
+    return doc
+
+
+def write_design(design: VibrationDesign, path: Path, convention: str = "sqrt") -> None:
+    """Write `design_document(design, convention)` as `vib.write_json` does, byte for byte,
+    with the breakpoints formatted and written in chunks as they come: neither their dicts
+    nor the whole text is held (864,000 breakpoints for a 2-hour sound)."""
+    doc = _skeleton(design, convention)
+    points = _envelope_points(design)
+    doc["signals"]["continuous"]["envelopes"] = {name: _MARK + name for name in points}
+    text = json.dumps(doc, indent=2, allow_nan=False) + "\n"
+    with Path(path).open("w", encoding="utf-8") as file:
+        for name, items in points.items():
+            mark = json.dumps(_MARK + name)
+            head, text = text.split(mark, 1)
+            file.write(head)
+            pad = " " * (len(head) - head.rindex("\n") - 1 - len(json.dumps(name)) - 2)
+            _write_list(file, items, pad)
+        file.write(text)
+
+
+_MARK = "\x00breakpoints of "  # stands for an envelope's list in the skeleton's text
+_CHUNK = 4096  # breakpoints formatted per write
+_ENCODER = json.JSONEncoder(indent=2, allow_nan=False)  # what json.dumps(indent=2, ...) uses
+
+
+def _write_list(file: Any, items: Iterator[dict[str, Any]], pad: str) -> None:
+    """A non-empty list of breakpoints as json.dumps(indent=2) writes it at indentation `pad`:
+    each chunk encoded as a list of its own, its lines indented by `pad`."""
+    file.write("[\n")
+    separator = ""
+    for chunk in iter(lambda: list(islice(items, _CHUNK)), []):
+        text = _ENCODER.encode(chunk)  # "[\n  {...},\n  {...}\n]"
+        file.write(separator + pad + text[2:-2].replace("\n", "\n" + pad))
+        separator = ",\n"
+    file.write("\n" + pad + "]")
+
+
+def _skeleton(design: VibrationDesign, convention: str) -> dict[str, Any]:
+    """The document without its envelopes (an empty dict stands for them)."""
     return {
         "version": {"major": 1, "minor": 0, "patch": 0},
         "metadata": {
@@ -237,66 +276,97 @@ def design_document(design: VibrationDesign, convention: str = "sqrt") -> dict[s
             "tags": [],
             "description": LINEAR_NOTE if convention == "linear" else "",
         },
-        "signals": {"continuous": {"envelopes": envelopes}},
+        "signals": {"continuous": {"envelopes": {}}},
     }
 
 
+def _envelope_points(design: VibrationDesign) -> dict[str, Iterator[dict[str, Any]]]:
+    """Each envelope's breakpoints as they come, amplitude (never empty) first."""
+    amplitude = design.amplitude
+    if len(amplitude) < 2 or amplitude[-1][0] <= amplitude[0][0]:
+        # Meta refuses an envelope of fewer than two breakpoints or no length: a silent one
+        # spanning the design stands in, keeping the emphasis and frequency envelope.
+        amplitude = ((0.0, 0.0), (design.duration, 0.0))
+    points = {"amplitude": _with_emphasis(amplitude, design.emphasis)}
+    if design.frequency:
+        points["frequency"] = ({"time": t, "frequency": v} for t, v in design.frequency)
+    return points
+
+
 def _with_emphasis(
-    amplitude: list[dict[str, Any]], emphasis: tuple[Emphasis, ...]
-) -> list[dict[str, Any]]:
+    amplitude: Sequence[tuple[float, float]], emphasis: tuple[Emphasis, ...]
+) -> Iterator[dict[str, Any]]:
     """The amplitude breakpoints with each emphasis (in time order) on a free one at its time.
 
     One walk through both, O(breakpoints + emphasis): an emphasis takes the first breakpoint at
     its time that carries none; when none is free, a breakpoint is added after those at its
     time, at their level, at the envelope's level between its neighbours (the one before may be
     an added one), or silent past the envelope's end. Its level is raised to the breakpoint's,
-    as Meta's validator requires.
+    as Meta's validator requires. The breakpoints at an emphasis' time are held until the next
+    emphasis' time; where emphasis were added before the envelope's first breakpoint, a silent
+    breakpoint at its time comes before it, so the envelope steps up there instead of ramping
+    from the added ones.
     """
-    out: list[dict[str, Any]] = []
+    start, first_level = amplitude[0]
+    held: list[tuple[dict[str, Any], int]] = []  # at the current emphasis' time, with their index
     free: deque[dict[str, Any]] = deque()
+    last: dict[str, Any] | None = None  # the last breakpoint given out or held
     i, n = 0, len(amplitude)
     current = None
+    before_start = False  # breakpoints were added before the envelope's first one
+
+    def given(bp: dict[str, Any], original: int) -> Iterator[dict[str, Any]]:
+        if original == 0 and before_start and first_level != 0.0:
+            yield {"time": start, "amplitude": 0.0}
+        yield bp
+
     for e in emphasis:
         if e.time != current:
             current = e.time
+            for bp, original in held:
+                yield from given(bp, original)
+            held = []
             free.clear()
-            while i < n and amplitude[i]["time"] <= e.time:
-                out.append(amplitude[i])
-                if amplitude[i]["time"] == e.time:
-                    free.append(amplitude[i])
+            while i < n and amplitude[i][0] <= e.time:
+                bp = {"time": amplitude[i][0], "amplitude": amplitude[i][1]}
+                if amplitude[i][0] == e.time:
+                    free.append(bp)
+                    held.append((bp, i))
+                else:
+                    yield from given(bp, i)
+                last = bp
                 i += 1
         if free:
             bp = free.popleft()
         else:
-            level = _level_for(e.time, out, amplitude[i : i + 1], amplitude[0]["time"])
-            bp = {"time": e.time, "amplitude": level}
-            out.append(bp)
+            bp = {
+                "time": e.time,
+                "amplitude": _level_for(e.time, last, amplitude[i : i + 1], start),
+            }
+            before_start = before_start or i == 0
+            held.append((bp, -1))
+            last = bp
         bp["emphasis"] = {"amplitude": max(e.amplitude, bp["amplitude"]), "frequency": e.frequency}
-    return _silent_until_start(out + amplitude[i:], amplitude[0])
-
-
-def _silent_until_start(
-    points: list[dict[str, Any]], first: dict[str, Any]
-) -> list[dict[str, Any]]:
-    """Where emphasis were added before the envelope's first breakpoint, a silent breakpoint at
-    its time too, so the envelope steps up there instead of ramping from the added ones."""
-    k = next(j for j, bp in enumerate(points) if bp is first)
-    if k == 0 or first["amplitude"] == 0.0:
-        return points
-    return points[:k] + [{"time": first["time"], "amplitude": 0.0}] + points[k:]
+    for bp, original in held:
+        yield from given(bp, original)
+    for j in range(i, n):
+        yield from given({"time": amplitude[j][0], "amplitude": amplitude[j][1]}, j)
 
 
 def _level_for(
-    time: float, before: list[dict[str, Any]], after: list[dict[str, Any]], start: float
+    time: float,
+    before: dict[str, Any] | None,
+    after: Sequence[tuple[float, float]],
+    start: float,
 ) -> float:
     """The level of a breakpoint added at `time`: that of the last at its time, the envelope
     between the breakpoints around it, or 0 before the envelope's start and past its end."""
-    if before and before[-1]["time"] == time:
-        return before[-1]["amplitude"]
-    if not after or time < start:
+    if before is not None and before["time"] == time:
+        return before["amplitude"]
+    if not after or time < start or before is None:
         return 0.0
-    a, b = before[-1], after[0]
-    return float(np.interp(time, [a["time"], b["time"]], [a["amplitude"], b["amplitude"]]))
+    (t_b, v_b) = after[0]
+    return float(np.interp(time, [before["time"], t_b], [before["amplitude"], v_b]))
 
 
 class LofeltFormat:
@@ -319,7 +389,7 @@ class LofeltFormat:
     def write(self, source: Project, path: Path, rate: float | None = None, **options: Any) -> None:
         """Write the project's sounding drive tracks as a v1 .haptic file."""
         convention = sharpness_convention(source)
-        vib.write_json(design_document(design_of(source, rate=rate), convention), path)
+        write_design(design_of(source, rate=rate), path, convention)
 
 
 def _check_version(version: Any, name: str) -> None:

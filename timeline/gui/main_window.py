@@ -526,6 +526,7 @@ class MainWindow(QMainWindow):
         self.player.stop()
         self.autosaver.discard()
         self.doc.reset(project, path)
+        self.player.project_replaced(self.doc.project)  # crosses to the play process meanwhile
         self.view.scene().set_playhead(0.0)  # the old playhead means nothing in another project
         self.view.scene().set_cursor(0.0)
         self.transport.scope.clear()

@@ -24,7 +24,7 @@ import multiprocessing
 import queue
 import sys
 import threading
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from contextlib import suppress
 from dataclasses import dataclass
 from multiprocessing.connection import Connection
@@ -138,11 +138,14 @@ class PlayProcess:
                 raise HapticTimelineError("the play process ended unexpectedly") from None
             self._sent = project
 
-    def warm(self, project: Project, start: float) -> None:
+    def warm(self, project: Project, start: float, sent: Callable[[], None] | None = None) -> None:
         """Send `project` and wait until the child has loaded what playing it from `start`
-        needs (the first chunk rendered, every compiled loop its clips use loaded)."""
+        needs (the first chunk rendered, every compiled loop its clips use loaded); `sent` is
+        called once the project has crossed, before that wait."""
         with self._warming:
             self.send("warm", project, start)
+            if sent is not None:
+                sent()
             if self._warmed.poll(START_SECONDS):
                 with suppress(EOFError, OSError):
                     self._warmed.recv()
