@@ -279,7 +279,8 @@ class FindingsOverlay(QObject):
         """Check again once edits pause; the check under way (now stale) stops."""
         self.version += 1
         self._cancel()
-        self._timer.start(DELAY_MS)
+        if not self._closed:  # an edit as the window closes starts no check
+            self._timer.start(DELAY_MS)
 
     def _cancel(self) -> None:
         """Drop the latest check if it is queued, or tell it to stop if it runs."""
@@ -310,6 +311,8 @@ class FindingsOverlay(QObject):
         return self._infos[name]
 
     def _start(self) -> None:
+        if self._closed:  # a timer that fired as the window closed
+            return
         version, project = self.version, self.doc.project
         try:
             info = self.device_info()

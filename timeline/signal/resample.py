@@ -24,6 +24,10 @@ WHOLE_SAMPLES = 2**20
 # (a recording at 0.005 Hz rendered at 10 kHz: 5e8), the wanted samples are summed directly
 # from the source by a windowed sinc instead, so the work follows the output, not the ratio.
 _MAX_MARGIN_OUTPUT = 2**20
+# Downsampling by more source samples per output sample than this (a 1e12 Hz table played at
+# 10 Hz) is a box average: soxr's filter for such a ratio takes minutes and gigabytes, and
+# every frequency the source holds lies far above the output's Nyquist anyway.
+_MAX_SOXR_STEP = 2**20
 _DIRECT_CHUNK = 2**13  # output samples per pass of the direct sinc (64 taps each: 4 MiB)
 _WHOLE_BYTES = 64 * 2**20  # resampled recordings kept, least recently used dropped first
 
@@ -116,6 +120,9 @@ def _band_limited(
     if _SOXR_MARGIN / step > max(_MAX_MARGIN_OUTPUT, n):
         out = _sinc_upsample(data, start, step, n)
         return out[::-1] if reverse else out
+    if step > _MAX_SOXR_STEP:
+        out = _box_average(data, start, step, n)
+        return out[::-1] if reverse else out
     soxr_quality = "VHQ" if quality.resampler == "soxr-vhq" else "HQ"
     whole = _whole(data, step, soxr_quality)
     if whole is not None:
@@ -136,6 +143,15 @@ def _band_limited(
         first = math.floor(offset)
         out = _fractional_delay(resampled, first, offset - first, n)
     return out[::-1] if reverse else out
+
+
+def _box_average(data: np.ndarray, start: float, step: float, n: int) -> np.ndarray:
+    """Output i: the source samples nearest to it (within half a step) summed over the step."""
+    out = np.zeros(n)
+    index = np.round((np.arange(len(data)) - start) / step)
+    inside = (index >= 0) & (index < n)
+    np.add.at(out, index[inside].astype(np.int64), data[inside] / step)
+    return out
 
 
 _kept: OrderedDict[tuple[int, float, str], tuple[np.ndarray, int, np.ndarray]] = OrderedDict()
