@@ -20,7 +20,7 @@ import numpy as np
 from device.sim.loop import State, servo_loop
 from device.sim.observer import OFF, observer_tuple
 from device.sim.params import KnobParams
-from device.sim.plant import step_matrix, system_matrix, viscous_loss
+from device.sim.plant import held_plant, step_matrix, viscous_loss
 from device.sim.readings import blow_up_index, readings
 from device.sim.stability import stability_flags
 from timeline.limits.servo import load_of
@@ -74,11 +74,8 @@ class KnobPhysics:
     def _step_map(self, hand: Hand) -> tuple[tuple[float, ...], np.ndarray]:
         """The plant's theta and omega rows over a period, and the viscous loss's matrix W."""
         p = self.params
-        inertia = p.inertia + (hand.inertia if hand.touches else 0.0)
-        grip_k, grip_b = (hand.grip_stiffness, hand.grip_damping) if hand.grips else (0.0, 0.0)
-        key = (inertia, grip_k, grip_b)
+        key, a = held_plant(p.inertia, p.viscous, hand)
         if key not in self._maps:
-            a = system_matrix(inertia, p.viscous, grip_k, grip_b)
             m = step_matrix(a, p.period, self.integrator, self.substeps)
             rows = tuple(float(x) for x in m[:2].ravel())
             self._maps[key] = (rows, viscous_loss(a, p.period, p.viscous))

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.linalg import expm
 
-from timeline.plugins.device_protocol import DeviceError
+from timeline.plugins.device_protocol import DeviceError, Hand
 
 INTEGRATORS = ("zoh", "rk4", "semi-implicit", "euler")
 
@@ -27,6 +27,16 @@ def system_matrix(inertia: float, damping: float, grip_k: float, grip_b: float) 
     a[1] /= inertia
     a[3, 4] = 1.0
     return a
+
+
+def held_plant(
+    inertia: float, damping: float, hand: Hand
+) -> tuple[tuple[float, float, float], np.ndarray]:
+    """The rotor with this hand on it: its key (inertia, grip stiffness, grip damping), by which
+    callers cache its maps, and its system matrix."""
+    inertia += hand.inertia if hand.touches else 0.0
+    grip_k, grip_b = (hand.grip_stiffness, hand.grip_damping) if hand.grips else (0.0, 0.0)
+    return (inertia, grip_k, grip_b), system_matrix(inertia, damping, grip_k, grip_b)
 
 
 def step_matrix(a: np.ndarray, h: float, integrator: str = "zoh", substeps: int = 1) -> np.ndarray:

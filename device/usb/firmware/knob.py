@@ -18,7 +18,7 @@ from functools import cache
 import numpy as np
 
 from device.sim import KnobParams
-from device.sim.plant import step_matrix, system_matrix
+from device.sim.plant import held_plant, step_matrix
 from device.usb import descriptors as desc
 from device.usb import protocol as p
 from device.usb.firmware.build import shared_library
@@ -102,11 +102,8 @@ class MotorModel:
     def rows(self, hand: Hand) -> tuple[float, ...]:
         """The plant's theta and omega rows over one period with this hand (as KnobPhysics)."""
         p = self.params
-        inertia = p.inertia + (hand.inertia if hand.touches else 0.0)
-        grip_k, grip_b = (hand.grip_stiffness, hand.grip_damping) if hand.grips else (0.0, 0.0)
-        key = (inertia, grip_k, grip_b)
+        key, a = held_plant(p.inertia, p.viscous, hand)
         if key not in self._maps:
-            a = system_matrix(inertia, p.viscous, grip_k, grip_b)
             self._maps[key] = tuple(float(x) for x in step_matrix(a, p.period)[:2].ravel())
         return self._maps[key]
 
