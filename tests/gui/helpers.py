@@ -54,3 +54,18 @@ def choose(qtbot, box, text: str) -> None:
     while box.view().currentIndex().data() != text:
         qtbot.keyClick(box.view(), Qt.Key.Key_Down)
     qtbot.keyClick(box.view(), Qt.Key.Key_Return)
+
+
+def shown_window(qtbot, project, width: int = 1300, height: int = 800):
+    """The main window on `project`, shown at this size, discarding unsaved changes on close."""
+    from PySide6.QtWidgets import QMessageBox
+
+    from timeline.gui.main_window import MainWindow
+
+    win = MainWindow(project)
+    win.ask_unsaved = lambda: QMessageBox.StandardButton.Discard
+    qtbot.addWidget(win)
+    win.resize(width, height)
+    win.show()
+    qtbot.waitExposed(win)
+    return win

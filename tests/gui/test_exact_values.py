@@ -16,7 +16,7 @@ from timeline import edits, generator, render
 from timeline.edits import markers
 from timeline.files import projectfile
 
-from .helpers import click, clip_point
+from .helpers import click, clip_point, shown_window
 
 LEFT = Qt.MouseButton.LeftButton
 CTRL = Qt.KeyboardModifier.ControlModifier
@@ -46,17 +46,8 @@ def rough_fan_knob():
 
 @pytest.fixture
 def knob(qtbot):
-    from PySide6.QtWidgets import QMessageBox
-
-    from timeline.gui.main_window import MainWindow
-
     project, torque, clip = rough_fan_knob()
-    win = MainWindow(project)
-    win.ask_unsaved = lambda: QMessageBox.StandardButton.Discard
-    qtbot.addWidget(win)
-    win.resize(1300, 800)
-    win.show()
-    qtbot.waitExposed(win)
+    win = shown_window(qtbot, project)
     win.view.fit()
     win.ids = {"torque": torque, "clip": clip}
     yield win

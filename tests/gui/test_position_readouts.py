@@ -13,20 +13,14 @@ from PySide6.QtTest import QTest
 from timeline.files import projectfile
 from timeline.gui.clip_item import clip_tip
 
-from .helpers import click, clip_point
+from .helpers import click, clip_point, shown_window
 
 FAN = Path(__file__).resolve().parents[2] / "projects" / "fan_knob.htl"
 
 
 @pytest.fixture
 def fan(qtbot):
-    from timeline.gui.main_window import MainWindow
-
-    win = MainWindow(projectfile.load(FAN))
-    qtbot.addWidget(win)
-    win.resize(1280, 800)
-    win.show()
-    qtbot.waitExposed(win)
+    win = shown_window(qtbot, projectfile.load(FAN), 1280, 800)
     win.view.lane_geometry.px_per_unit = 150.0  # px per radian: the 240 deg detents ~630 px
     win.view.refresh()
     return win

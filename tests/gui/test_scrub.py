@@ -13,6 +13,7 @@ from PySide6.QtTest import QTest
 from timeline import render
 from timeline.gui.scrub import GRAIN_SECONDS
 
+from .helpers import shown_window
 from .test_exact_values import rough_fan_knob
 
 LEFT = Qt.MouseButton.LeftButton
@@ -21,17 +22,8 @@ LEFT = Qt.MouseButton.LeftButton
 @pytest.fixture
 def knob(qtbot):
     """The main window on a fan knob (detents over 240 degrees), fitted to the lanes."""
-    from PySide6.QtWidgets import QMessageBox
-
-    from timeline.gui.main_window import MainWindow
-
     project, _, _ = rough_fan_knob()
-    win = MainWindow(project)
-    win.ask_unsaved = lambda: QMessageBox.StandardButton.Discard
-    qtbot.addWidget(win)
-    win.resize(1300, 800)
-    win.show()
-    qtbot.waitExposed(win)
+    win = shown_window(qtbot, project)
     win.view.fit()
     yield win
     win.player.close()
