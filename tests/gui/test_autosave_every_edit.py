@@ -6,7 +6,7 @@ import json
 import subprocess
 
 from timeline import edits, generator
-from timeline.files import projectfile
+from timeline.files import journal, projectfile
 from timeline.gui import autosave
 from timeline.gui.autosave import Autosaver, recoverable
 from timeline.gui.document import Document
@@ -27,13 +27,10 @@ def test_each_edit_is_on_disk_once_the_editor_is_idle(tmp_path, monkeypatch, qtb
     for i in range(3):
         doc.apply("add clip", edits.add_clip, track, tile, 1.0 + i)
         done = doc.project
-
-        def written(done=done) -> bool:
-            return saver._written is not None and saver._written[0] is done
-
-        qtbot.waitUntil(written, timeout=2000)  # was 3 s of idle: every edit in them lost
-        assert len(projectfile.load(saver.path).tracks[0].clips) == i + 1
+        qtbot.waitUntil(lambda done=done: saver.journal.state is done, timeout=2000)
+        assert len(journal.replay(saver.path).project.tracks[0].clips) == i + 1
     saver.discard()
+    assert not saver.path.exists()
 
 
 def _dead_pid() -> int:

@@ -160,12 +160,12 @@ def test_an_autosave_that_cannot_write_says_so_and_the_next_change_autosaves(
     window, qtbot, monkeypatch
 ):
     win = window
-    real_save = autosave.projectfile.save
+    real_write = autosave.journal._write_all
 
-    def full_disk(project, path):
+    def full_disk(fd, parts):
         raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr(autosave.projectfile, "save", full_disk)
+    monkeypatch.setattr(autosave.journal, "_write_all", full_disk)
     win.autosaver.timer.setInterval(50)
     win.doc.select_clips([win.ids["c1"]])
     with qtbot.waitSignal(win.autosaver.failed, timeout=10_000) as blocker:
@@ -173,7 +173,7 @@ def test_an_autosave_that_cannot_write_says_so_and_the_next_change_autosaves(
     assert blocker.args == ["Autosave failed: No space left on device"]
     assert win.messages.history[-1] == ("Autosave failed: No space left on device", "error")
     assert not win.autosaver.path.exists()
-    monkeypatch.setattr(autosave.projectfile, "save", real_save)
+    monkeypatch.setattr(autosave.journal, "_write_all", real_write)
     win.reverse()
     qtbot.waitUntil(win.autosaver.path.exists, timeout=10_000)
 

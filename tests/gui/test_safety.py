@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 import soundfile
 
-from timeline.files import projectfile
+from timeline.errors import ProjectFileError
+from timeline.files import journal
 from timeline.gui import autosave
 
 CHILD = textwrap.dedent(
@@ -37,6 +38,17 @@ CHILD = textwrap.dedent(
 )
 
 
+def _journaled(folder: Path) -> bool:
+    """Whether a session in the autosave folder holds an edit."""
+    for session in folder.glob("session-*"):
+        try:
+            journal.replay(session)
+        except (ProjectFileError, OSError):
+            continue
+        return True
+    return False
+
+
 def test_autosave_survives_a_killed_process_and_is_offered(window, data_home, tmp_path):
     env = {**os.environ, "XDG_DATA_HOME": str(data_home)}
     child = subprocess.Popen([sys.executable, "-c", CHILD], env=env, stdout=subprocess.PIPE)
@@ -44,7 +56,7 @@ def test_autosave_survives_a_killed_process_and_is_offered(window, data_home, tm
         assert child.stdout.readline().strip() == b"edited"
         folder = data_home / "haptic-timeline" / "autosave"
         deadline = time.monotonic() + 20
-        while not list(folder.glob("session-*.htl")) and time.monotonic() < deadline:
+        while not _journaled(folder) and time.monotonic() < deadline:
             time.sleep(0.05)
     finally:
         child.send_signal(signal.SIGKILL)
@@ -105,46 +117,51 @@ def test_export_writes_only_when_finished_and_cancel_leaves_no_file(window, qtbo
     assert sorted(p.name for p in tmp_path.iterdir() if p.name.startswith(".out2")) == []
 
 
-def _held_save(monkeypatch):
-    """projectfile.save as the autosaver calls it, held until the returned event is set."""
+def _held_snapshot(monkeypatch):
+    """projectfile.save as the journal's snapshot calls it, held until the returned event is set."""
     started, release = threading.Event(), threading.Event()
-    real_save = autosave.projectfile.save
+    real_save = journal.projectfile.save
 
     def held(project, path):
         started.set()
         assert release.wait(20)
         real_save(project, path)
 
-    monkeypatch.setattr(autosave.projectfile, "save", held)
+    monkeypatch.setattr(journal.projectfile, "save", held)
     return started, release
 
 
-def test_autosave_writes_on_its_own_thread_while_the_editor_goes_on(window, monkeypatch):
-    started, release = _held_save(monkeypatch)
+def test_a_snapshot_writes_on_its_own_thread_while_edits_are_journaled(window, monkeypatch):
+    started, release = _held_snapshot(monkeypatch)
     saver = window.autosaver
+    saver.journal.snapshot_records = 1  # the first record starts a snapshot
     window.doc.select_clips([window.ids["c1"]])
     window.reverse()
-    snapshot = window.doc.project
     saver.save_now()
-    assert started.wait(10) and saver.writer.is_alive()  # the write waits; the GUI thread does not
-    window.reverse()  # an edit while the write runs
-    saver.save_now()  # a second write would race the first: it is put off to the next idle time
-    assert saver.timer.isActive()
+    assert started.wait(10) and saver.journal.writing  # the snapshot waits; the editor does not
+    window.reverse()  # an edit while the snapshot runs is journaled at once
+    saver.save_now()
+    assert journal.replay(saver.path).project == window.doc.project
+    assert window.doc.project.find_clip(window.ids["c1"])[1].reverse is False
     release.set()
-    saver.writer.join()
-    saved = projectfile.load(saver.path)
-    assert saved.find_clip(window.ids["c1"])[1] == snapshot.find_clip(window.ids["c1"])[1]
-    assert saved.find_clip(window.ids["c1"])[1].reverse is True
+    saver.journal.wait()
+    assert sorted(p.name for p in saver.path.iterdir()) == [
+        "journal-1.log",  # the edits after the snapshot; journal 0 is gone
+        "meta.json",
+        "snapshot-1.htl",
+    ]
+    assert journal.replay(saver.path).project == window.doc.project
 
 
-def test_a_discard_waits_for_the_write_and_leaves_no_autosave(window, monkeypatch):
-    started, release = _held_save(monkeypatch)
+def test_a_discard_waits_for_the_snapshot_and_leaves_no_autosave(window, monkeypatch):
+    started, release = _held_snapshot(monkeypatch)
     saver = window.autosaver
+    saver.journal.snapshot_records = 1
     window.doc.select_clips([window.ids["c1"]])
     window.reverse()
     saver.save_now()
     assert started.wait(10)
     threading.Timer(0.2, release.set).start()  # the write finishes while discard waits for it
     saver.discard()
-    assert not saver.writer.is_alive()
-    assert not saver.path.exists() and not saver.path.with_suffix(".json").exists()
+    assert not saver.journal.writing
+    assert not saver.path.exists()

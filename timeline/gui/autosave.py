@@ -1,10 +1,13 @@
-"""Autosave after every change, and recovery of what a crashed session left behind."""
+"""Autosave after every change (a journal: timeline.files.journal), and recovery of what a
+crashed session left behind."""
 
 from __future__ import annotations
 
+import contextlib
+import itertools
 import json
 import os
-import threading
+import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -12,15 +15,15 @@ import platformdirs
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from timeline.errors import HapticTimelineError
-from timeline.files import projectfile
-from timeline.files.atomic import remove_leftovers, write_atomically
+from timeline.files import journal, projectfile
+from timeline.files.atomic import remove_leftovers
 from timeline.model import Project
 
 from .document import Document
 from .job_errors import one_line, unexpected
 
 IDLE_MS = 0  # a change is autosaved as soon as the editor returns to its event loop
-RETRY_MS = 100  # while a write runs, the next is tried this often
+_SESSIONS = itertools.count()  # a process's sessions (one per window): session-PID-N
 
 
 def data_dir() -> Path:
@@ -48,63 +51,105 @@ def _alive(pid: int) -> bool:
 
 @dataclass(frozen=True)
 class Recoverable:
-    """An autosave left by a session that did not close: the file and the project it was editing."""
+    """What a session that did not close left: a journal's folder (or an autosave file of an
+    older version), and the project file it was editing."""
 
     autosave: Path
     original: Path | None
 
     def load(self) -> Project:
+        if self.autosave.is_dir():
+            return journal.replay(self.autosave).project
         return projectfile.load(self.autosave)
 
     def discard(self) -> None:
+        if self.autosave.is_dir():
+            shutil.rmtree(self.autosave, ignore_errors=True)
+            return
         self.autosave.unlink(missing_ok=True)
         self.autosave.with_suffix(".json").unlink(missing_ok=True)
 
 
+def _session_pid(path: Path) -> int | None:
+    """The process id in a session's name (session-PID-N, or session-PID.htl of old)."""
+    try:
+        return int(path.name.removeprefix("session-").split("-")[0].split(".")[0])
+    except ValueError:
+        return None
+
+
+def _dead(path: Path) -> bool:
+    pid = _session_pid(path)
+    return pid is not None and pid != os.getpid() and not _alive(pid)
+
+
 def remove_orphans(folder: Path) -> None:
-    """Remove what killed sessions left in the autosave folder besides their autosaves: a
-    write's temporary (`.partial`), and a companion (`session-PID.json`) or an autosave whose
-    other half is gone (a kill between removing the two)."""
+    """Remove what killed sessions left in the autosave folder besides what can be recovered: a
+    write's temporary (`.partial`), a session folder holding no journal or snapshot, and of the
+    older autosave files a companion (`session-PID.json`) or an autosave whose other half is
+    gone (a kill between removing the two)."""
     remove_leftovers(folder)
-    for path in [*folder.glob("session-*.json"), *folder.glob("session-*.htl")]:
-        other = path.with_suffix(".htl" if path.suffix == ".json" else ".json")
-        try:
-            pid = int(path.stem.removeprefix("session-"))
-        except ValueError:
+    for path in folder.glob("session-*"):
+        if not _dead(path):
             continue
-        if not other.exists() and pid != os.getpid() and not _alive(pid):
-            path.unlink(missing_ok=True)
+        if path.is_dir():
+            remove_leftovers(path)
+            if not [*path.glob("journal-*.log"), *path.glob("snapshot-*.htl")]:
+                shutil.rmtree(path, ignore_errors=True)
+        elif path.suffix in (".json", ".htl"):
+            other = path.with_suffix(".htl" if path.suffix == ".json" else ".json")
+            if not other.exists():
+                path.unlink(missing_ok=True)
+
+
+def _newest(path: Path) -> float:
+    """When a session last wrote (its folder's newest file)."""
+    files = [*path.iterdir()] if path.is_dir() else [path]
+    with contextlib.suppress(OSError):
+        return max((f.stat().st_mtime for f in files), default=0.0)
+    return 0.0
 
 
 def recoverable() -> list[Recoverable]:
-    """Autosaves of sessions whose process is gone, newest first (orphans removed first)."""
+    """What sessions whose process is gone left, newest first (orphans removed first, and the
+    temporaries killed saves left beside each one's project file)."""
     found = []
-    remove_orphans(autosave_dir())
-    for meta in sorted(
-        autosave_dir().glob("*.json"), key=lambda p: p.stat().st_mtime, reverse=True
-    ):
-        try:
-            info = json.loads(meta.read_text())
-            pid = int(info["pid"])
-        except (OSError, ValueError, KeyError, TypeError):
+    folder = autosave_dir()
+    remove_orphans(folder)
+    for path in folder.glob("session-*"):
+        if not _dead(path):
             continue
-        htl = meta.with_suffix(".htl")
-        if pid == os.getpid() or _alive(pid) or not htl.exists():
+        if path.is_dir():
+            where = journal.read_meta(path).get("path")
+            entry = Recoverable(path, Path(where) if isinstance(where, str) and where else None)
+        elif path.suffix == ".json":
+            try:
+                info = json.loads(path.read_text())
+                original = Path(info["path"]) if info.get("path") else None
+            except (OSError, ValueError, KeyError, TypeError, AttributeError):
+                continue
+            if not path.with_suffix(".htl").exists():
+                continue
+            entry = Recoverable(path.with_suffix(".htl"), original)
+        else:
             continue
-        found.append(Recoverable(htl, Path(info["path"]) if info.get("path") else None))
-    return found
+        if entry.original is not None:
+            remove_leftovers(entry.original.parent)
+        found.append(entry)
+    return sorted(found, key=lambda r: _newest(r.autosave), reverse=True)
 
 
 class Autosaver(QObject):
-    """Writes the document to the autosave folder after every change (IDLE_MS), so a kill loses
-    at most the changes made while one write ran.
+    """Journals the document after every change (IDLE_MS), so a kill loses at most the edit the
+    editor had not yet returned from.
 
-    The write runs on a thread of its own (a project is immutable, so the snapshot taken when the
-    editor goes idle cannot change under it): a project holding an hour of audio writes 635 MB of
-    samples and syncs them, about a second on a quiet disk, and the editor stays usable meanwhile.
-    One write runs at a time; a change during a write is written when it ends (tried every
-    RETRY_MS); a state already written is not written again. A write that fails says so
-    through `failed` (one line); the next change autosaves again.
+    Each change the project made since the last one (an undo and a redo too) is appended to this
+    session's journal when the editor goes idle: a few hundred bytes for a moved clip, written
+    to the operating system at once (timeline.files.journal); a full snapshot is written on a
+    thread now and then. The journal starts from the project file the document was opened from
+    or saved to (`on_disk`), else its first record holds the whole project. Back at the saved
+    state, and after a save or a clean close, the session's files are removed. A write that
+    fails says so through `failed` (one line); the next change starts a journal anew.
     """
 
     failed = Signal(str)
@@ -116,58 +161,64 @@ class Autosaver(QObject):
         self.timer.setSingleShot(True)
         self.timer.setInterval(idle_ms)
         self.timer.timeout.connect(self.save_now)
-        doc.changed.connect(lambda _: self.timer.start(idle_ms))
-        self.path = autosave_dir() / f"session-{os.getpid()}.htl"
-        self.writer: threading.Thread | None = None
-        self._writing = threading.Lock()  # held while the files are written or removed
-        self._discards = 0  # a write started before the latest discard leaves nothing behind
-        self._written: tuple[Project, dict[str, object]] | None = None  # the last state written
+        doc.changed.connect(self._changed)
+        self.path = autosave_dir() / f"session-{os.getpid()}-{next(_SESSIONS)}"
+        self.journal = journal.Journal(self.path, failed=self.failed.emit)
+        self.offered: list[Recoverable] = []  # discarded at a clean close, once offered
+        self._history = doc.history
+        self._on_disk: tuple[Project, Path] | None = None
+        self._begin()
+
+    def _begin(self) -> None:
+        """Start the journal anew: from the saved state, or with unsaved changes, whole."""
+        meta = {"pid": os.getpid(), "path": str(self.doc.path) if self.doc.path else ""}
+        if self.doc.modified:
+            self.journal.start(journal.EMPTY, meta)
+            return
+        file = self._on_disk[1] if self._on_disk and self._on_disk[0] is self.doc.project else None
+        try:
+            self.journal.start(self.doc.project, meta, file)
+        except OSError:  # the file is gone: the first record writes the project whole
+            self.journal.start(self.doc.project, meta)
+
+    def _changed(self, _project: Project) -> None:
+        if self.doc.history is not self._history:  # another project: a session of its own
+            self._history, self._on_disk = self.doc.history, None
+            self._begin()
+        self.timer.start()
+
+    def on_disk(self, path: Path) -> None:
+        """The document's project is what `path` holds now (just opened or saved): the journal
+        starts from that file."""
+        self._on_disk = (self.doc.project, Path(path))
+        self.timer.stop()
+        self._begin()
 
     def save_now(self) -> None:
-        """Start writing the autosave (only when there are unsaved changes)."""
+        """Append the document's state to the journal (only with unsaved changes)."""
         if not self.doc.modified:
-            self.discard()
+            if self.journal.active or self.journal.state is not self.doc.project:
+                self._begin()  # back at the saved state: nothing to recover
             return
-        if self.writer is not None and self.writer.is_alive():
-            self.timer.start(RETRY_MS)  # the project changed while a write ran: write it after
-            return
-        meta = {"pid": os.getpid(), "path": str(self.doc.path) if self.doc.path else ""}
-        written = self._written
-        if written is not None and written[0] is self.doc.project and written[1] == meta:
-            return  # this state is the autosave already
-        self.writer = threading.Thread(
-            target=self._write,
-            args=(self.doc.project, meta, self._discards),
-            name="autosave",
-            daemon=True,
-        )
-        self.writer.start()
-
-    def _write(self, project: Project, meta: dict[str, object], discards: int) -> None:
-        with self._writing:
-            if discards != self._discards:
-                return
-            text = json.dumps(meta).encode("utf-8")  # the companion first: a kill between the two
-
-            def write_meta(tmp: Path) -> None:
-                tmp.write_bytes(text)
-
-            try:
-                write_atomically(self.path.with_suffix(".json"), write_meta)
-                projectfile.save(project, self.path)  # leaves the previous autosave, still found
-                self._written = (project, meta)
-            except (HapticTimelineError, OSError) as exc:
-                reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else exc
-                self.failed.emit(one_line(f"Autosave failed: {reason}"))
-            except Exception as exc:  # noqa: BLE001 - a bug must not end autosaving unheard
-                self.failed.emit(unexpected("Autosave", exc))
+        if self.journal.state is None:
+            self._begin()
+        try:
+            self.journal.record(self.doc.project)
+        except (HapticTimelineError, OSError) as exc:
+            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else exc
+            self.failed.emit(one_line(f"Autosave failed: {reason}"))
+            self.journal.remove()
+        except Exception as exc:  # noqa: BLE001 - a bug must not end autosaving unheard
+            self.failed.emit(unexpected("Autosave", exc))
+            self.journal.remove()
 
     def discard(self) -> None:
-        """Remove this session's autosave (after a save or a clean close); a write in progress
-        is waited for, and one not yet started will not write."""
+        """Remove this session's autosave (a snapshot being written is waited for)."""
         self.timer.stop()
-        self._discards += 1
-        self._written = None
-        with self._writing:
-            self.path.unlink(missing_ok=True)
-            self.path.with_suffix(".json").unlink(missing_ok=True)
+        self.journal.remove()
+
+    def close(self) -> None:
+        """A clean close: this session's files go, and what was offered for recovery."""
+        self.discard()
+        for entry in self.offered:
+            entry.discard()

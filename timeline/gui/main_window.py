@@ -93,6 +93,8 @@ class MainWindow(QMainWindow):
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self._build()
         self.autosaver = Autosaver(self.doc)
+        if project is not None and path is not None:
+            self.autosaver.on_disk(path)  # the journal starts from the file opened
         self.autosaver.failed.connect(lambda text: self.messages.show_message(text, "error"))
         self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
         self.rendered_action = self.findings.rendered.add_action(
@@ -543,6 +545,7 @@ class MainWindow(QMainWindow):
             self.messages.show_message(str(exc), "error")
             return False
         self._load(project, Path(path))
+        self.autosaver.on_disk(Path(path))
         remember(Path(path))
         self.messages.show_message(f"opened {Path(path).name}")
         return True
@@ -566,7 +569,7 @@ class MainWindow(QMainWindow):
             self.messages.show_message(f"could not save: {exc}", "error")
             return False
         self.doc.mark_saved(Path(path))
-        self.autosaver.discard()
+        self.autosaver.on_disk(Path(path))
         remember(Path(path))
         self.messages.show_message(f"saved {Path(path).name}")
         return True
@@ -706,6 +709,7 @@ class MainWindow(QMainWindow):
     def offer_recovery(self) -> list[Recoverable]:
         """If a crashed session left an autosave, offer it in the message bar."""
         found = recoverable()
+        self.autosaver.offered = found[:1]  # removed at a clean close if not recovered
         if found:
             entry = found[0]
             where = entry.original.name if entry.original else "an untitled project"
@@ -754,5 +758,5 @@ class MainWindow(QMainWindow):
         window_state.save(self)
         self.player.close()
         self.findings.close()
-        self.autosaver.discard()
+        self.autosaver.close()
         event.accept()
