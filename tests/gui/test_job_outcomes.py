@@ -166,7 +166,6 @@ def test_an_autosave_that_cannot_write_says_so_and_the_next_change_autosaves(
         raise OSError(errno.ENOSPC, "No space left on device")
 
     monkeypatch.setattr(autosave.journal, "_write_all", full_disk)
-    win.autosaver.timer.setInterval(50)
     win.doc.select_clips([win.ids["c1"]])
     with qtbot.waitSignal(win.autosaver.failed, timeout=10_000) as blocker:
         win.reverse()

@@ -28,7 +28,6 @@ CHILD = textwrap.dedent(
     from timeline.gui.main_window import MainWindow
     from timeline import edits
     win = MainWindow()
-    win.autosaver.timer.setInterval(200)
     track = win.doc.project.tracks[0].id
     tile = win.doc.project.tab("Templates").tile_ids[0]
     win.doc.apply("add clip", edits.add_clip, track, tile, 1.25)
@@ -72,7 +71,6 @@ def test_autosave_survives_a_killed_process_and_is_offered(window, data_home, tm
 
 
 def test_idle_autosave_writes_then_a_save_removes_it(window, qtbot, tmp_path):
-    window.autosaver.timer.setInterval(50)
     window.doc.select_clips([window.ids["c1"]])
     window.reverse()
     qtbot.waitUntil(window.autosaver.path.exists, timeout=3000)

@@ -17,7 +17,8 @@ from timeline.plugins import discovery
 ORDER = (
     "examples", "mixer", "quality", "resampler", "integrators", "sim-speed", "estimator",
     "accumulation", "edit-to-feel", "scale", "convert", "formats", "ahap-reader", "waves",
-    "design-drag", "media", "compare", "convert-memory", "readers", "playback", "editor",
+    "design-drag", "media", "autosave", "compare", "convert-memory", "readers", "playback",
+    "editor",
 )  # fmt: skip
 
 BUILT_IN = {
@@ -34,6 +35,7 @@ BUILT_IN = {
     "waves": "timeline.bench.waves",
     "design-drag": "timeline.bench.design_drag",
     "media": "timeline.bench.project_media",
+    "autosave": "timeline.bench.autosave_journal",
     "compare": "timeline.bench.compare_icons",
     "convert-memory": "timeline.bench.convert_memory",
     "readers": "timeline.bench.readers",

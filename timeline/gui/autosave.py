@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import platformdirs
-from PySide6.QtCore import QObject, QTimer, Signal
+from PySide6.QtCore import QObject, Signal
 
 from timeline.errors import HapticTimelineError
 from timeline.files import journal, projectfile
@@ -22,7 +22,6 @@ from timeline.model import Project
 from .document import Document
 from .job_errors import one_line, unexpected
 
-IDLE_MS = 0  # a change is autosaved as soon as the editor returns to its event loop
 _SESSIONS = itertools.count()  # a process's sessions (one per window): session-PID-N
 
 
@@ -140,27 +139,24 @@ def recoverable() -> list[Recoverable]:
 
 
 class Autosaver(QObject):
-    """Journals the document after every change (IDLE_MS), so a kill loses at most the edit the
-    editor had not yet returned from.
+    """Journals the document at every change, so a kill loses at most the edit being made.
 
-    Each change the project made since the last one (an undo and a redo too) is appended to this
-    session's journal when the editor goes idle: a few hundred bytes for a moved clip, written
-    to the operating system at once (timeline.files.journal); a full snapshot is written on a
-    thread now and then. The journal starts from the project file the document was opened from
-    or saved to (`on_disk`), else its first record holds the whole project. Back at the saved
-    state, and after a save or a clean close, the session's files are removed. A write that
-    fails says so through `failed` (one line); the next change starts a journal anew.
+    Each change of the project (an undo and a redo too, each step of a drag) is appended to this
+    session's journal as the document announces it, before the view redraws: a few hundred
+    bytes for a moved clip, written to the operating system at once (timeline.files.journal);
+    a full snapshot is written on a thread now and then. (Written once the editor went idle, a
+    window busy redrawing put the journal off: a kill lost 15 edits.) The journal starts from
+    the project file the document was opened from or saved to (`on_disk`), else its first
+    record holds the whole project. Back at the saved state, and after a save or a clean close,
+    the session's files are removed. A write that fails says so through `failed` (one line);
+    the next change starts a journal anew.
     """
 
     failed = Signal(str)
 
-    def __init__(self, doc: Document, idle_ms: int = IDLE_MS) -> None:
+    def __init__(self, doc: Document) -> None:
         super().__init__()
         self.doc = doc
-        self.timer = QTimer(self)
-        self.timer.setSingleShot(True)
-        self.timer.setInterval(idle_ms)
-        self.timer.timeout.connect(self.save_now)
         doc.changed.connect(self._changed)
         self.path = autosave_dir() / f"session-{os.getpid()}-{next(_SESSIONS)}"
         self.journal = journal.Journal(self.path, failed=self.failed.emit)
@@ -185,13 +181,12 @@ class Autosaver(QObject):
         if self.doc.history is not self._history:  # another project: a session of its own
             self._history, self._on_disk = self.doc.history, None
             self._begin()
-        self.timer.start()
+        self.save_now()
 
     def on_disk(self, path: Path) -> None:
         """The document's project is what `path` holds now (just opened or saved): the journal
         starts from that file."""
         self._on_disk = (self.doc.project, Path(path))
-        self.timer.stop()
         self._begin()
 
     def save_now(self) -> None:
@@ -214,7 +209,6 @@ class Autosaver(QObject):
 
     def discard(self) -> None:
         """Remove this session's autosave (a snapshot being written is waited for)."""
-        self.timer.stop()
         self.journal.remove()
 
     def close(self) -> None:
