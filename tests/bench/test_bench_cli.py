@@ -59,8 +59,8 @@ def test_list_names_every_benchmark(capsys) -> None:
     names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert names == ["examples", "mixer", "quality", "resampler", "integrators", "sim-speed",
                      "estimator", "accumulation", "edit-to-feel", "scale", "convert",
-                     "formats", "ahap-reader", "waves", "design-drag", "media", "compare",
-                     "convert-memory", "readers", "playback", "editor"]  # fmt: skip
+                     "formats", "ahap-reader", "waves", "design-drag", "media", "autosave",
+                     "compare", "convert-memory", "readers", "playback", "editor"]  # fmt: skip
 
 
 def test_each_benchmark_module_is_named_as_listed() -> None:

@@ -54,3 +54,48 @@ def test_the_next_start_removes_partial_and_orphan_session_files(tmp_path, monke
     found = recoverable()
     assert [r.autosave for r in found] == [kept]  # the complete autosave is still offered
     assert not partial.exists() and not orphan.exists()
+
+
+def test_a_dead_session_is_offered_and_removed_at_the_next_clean_close(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path))
+    folder = autosave.autosave_dir()
+    p, track, tile = _project()
+    edited, _ = edits.add_clip(p, track, tile, 1.5)
+    dead = _dead_pid()
+    session = folder / f"session-{dead}-0"
+    killed = journal.Journal(session)
+    killed.start(p, {"pid": dead, "path": ""})
+    killed.record(edited)
+    partial = session / f".snapshot-1.partial-{dead}-ab12.htl"  # a snapshot killed mid-write
+    partial.write_bytes(b"half a project")
+    empty = folder / f"session-{_dead_pid()}-0"  # killed before its first record
+    empty.mkdir()
+    (empty / "meta.json").write_text("{}")
+    doc = Document(p)
+    saver = Autosaver(doc)
+    doc.apply("add clip", edits.add_clip, track, tile, 2.5)  # this live session is not offered
+    found = recoverable()
+    assert [r.autosave for r in found] == [session]
+    assert not partial.exists() and not empty.exists()
+    assert found[0].load() == edited
+    saver.offered = found
+    saver.close()
+    assert list(folder.iterdir()) == []
+
+
+def test_the_journal_starts_from_the_file_and_goes_back_at_the_saved_state(tmp_path, monkeypatch):
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path))
+    p, track, tile = _project()
+    path = tmp_path / "design.htl"
+    projectfile.save(p, path)
+    doc = Document(p, path)
+    saver = Autosaver(doc)
+    saver.on_disk(path)
+    doc.apply("add clip", edits.add_clip, track, tile, 1.0)
+    heads = [h for h, _ in journal.read_records(journal.journal_path(saver.path, 0))]
+    assert [h["kind"] for h in heads] == ["base", "edit"] and heads[0]["file"] == str(path)
+    doc.undo()  # the saved state: nothing to recover
+    assert not saver.path.exists()
+    doc.redo()
+    assert journal.replay(saver.path).project == doc.project
+    saver.discard()

@@ -247,7 +247,7 @@ def run(quick: bool, out: Path):
             f"{cost['file_mb']:.1f}",
         ]
     )
-    kills_n = 5 if quick else 30
+    kills_n = 3 if quick else 30
     kills = kill_loop(kills_n, 7, window=not quick, clips=2_000, samples=1_000_000)
     lost = [k.lost for k in kills]
     loop = Table(

@@ -185,9 +185,10 @@ class Autosaver(QObject):
 
     def on_disk(self, path: Path) -> None:
         """The document's project is what `path` holds now (just opened or saved): the journal
-        starts from that file."""
+        starts from that file, and the temporaries killed writers left beside it go."""
         self._on_disk = (self.doc.project, Path(path))
         self._begin()
+        remove_leftovers(Path(path).parent)  # what a save killed there left
 
     def save_now(self) -> None:
         """Append the document's state to the journal (only with unsaved changes)."""
