@@ -61,7 +61,7 @@ def step_starts(steps: int) -> list[tuple[float, ...]]:
     """The child's added clip starts after each of 0..steps steps (step i adds a clip at
     FIRST + i, every fourth step undoes the last add instead)."""
     done: list[float] = []
-    states = [()]
+    states: list[tuple[float, ...]] = [()]
     for i in range(steps):
         if i % 4 == 3:
             done.pop()

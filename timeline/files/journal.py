@@ -161,7 +161,11 @@ class Journal:
         base, meta = self._state, self._meta
         self.folder.mkdir(parents=True, exist_ok=True)
         text = json.dumps(meta).encode("utf-8")
-        write_atomically(self.folder / "meta.json", lambda tmp: tmp.write_bytes(text))
+
+        def write_meta(tmp: Path) -> None:
+            tmp.write_bytes(text)
+
+        write_atomically(self.folder / "meta.json", write_meta)
         self._open_generation(0)
         if meta["file"] is None:
             self._state = EMPTY  # the first record writes the base whole

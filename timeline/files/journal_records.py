@@ -23,6 +23,7 @@ from timeline.errors import FieldError
 from timeline.files import project_fields as fields
 from timeline.files import projectfile as pf
 from timeline.model import Clip, PaletteTab, Project, Track, Variant
+from timeline.model.id_sequence import IdSequence
 from timeline.tiles import SampledTile, Tile
 
 Media = dict[str, SampledTile]  # content key -> a tile holding those samples
@@ -47,11 +48,16 @@ def _clips_delta(old: Track | None, new: Track) -> dict[str, Any]:
 
 
 def _track_delta(old: Track | None, new: Track) -> dict[str, Any]:
-    return pf._track_to_json(new, lambda _: _clips_delta(old, new))  # type: ignore[arg-type, return-value]
+    doc = pf._track_to_json(new, lambda _: [])
+    doc["clips"] = _clips_delta(old, new)
+    return doc
 
 
 def _tile_json(tile: Tile, media: Media) -> dict[str, Any]:
-    return pf._tile_to_json(tile, media, lambda t: t)  # type: ignore[arg-type, return-value]
+    """The tile as the project file writes it; a recording is named by its key, kept in media."""
+    if isinstance(tile, SampledTile):
+        media[tile.key] = tile
+    return pf._tile_to_json(tile, {}, lambda _: {})
 
 
 def _tiles_delta(old: Map, new: Map, media: Media) -> dict[str, Any]:
@@ -161,12 +167,12 @@ def _tracks(old: Sequence[Track], items: Any) -> tuple[Track, ...]:
 
 def _tiles(old: Map, obj: Any, pool: Pool) -> Map:
     changed = fields.get(obj, "set", dict, "record.tiles")
-    with old.mutate() as tiles:
-        for key in fields.get(obj, "del", list, "record.tiles"):
-            tiles.pop(key, None)
-        for key, value in changed.items():
-            tiles[key] = pf._built(lambda v=value, k=key: _tile(v, pool, f"tile {k!r}"), key)
-        return tiles.finish()
+    tiles = old.mutate()
+    for key in fields.get(obj, "del", list, "record.tiles"):
+        tiles.pop(key, None)
+    for key, value in changed.items():
+        tiles[key] = pf._built(lambda v=value, k=key: _tile(v, pool, f"tile {k!r}"), key)
+    return tiles.finish()
 
 
 def _palette(old: Sequence[PaletteTab], items: Any) -> tuple[PaletteTab, ...]:
@@ -180,7 +186,7 @@ def _palette(old: Sequence[PaletteTab], items: Any) -> tuple[PaletteTab, ...]:
                 PaletteTab(
                     fields.get(item, "name", str, "palette tab"),
                     fields.get(item, "role", str, "palette tab"),
-                    pf._tile_ids(tiles),
+                    IdSequence(pf._tile_ids(tiles)),
                 )
             )
     return tuple(tabs)
