@@ -176,7 +176,8 @@ class Journal:
 
     def _open_generation(self, number: int) -> None:
         path = journal_path(self.folder, number)
-        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND, 0o600)
+        flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_APPEND | getattr(os, "O_BINARY", 0)
+        fd = os.open(path, flags, 0o600)
         _write_all(fd, [memoryview(MAGIC)])
         if self._generation is not None:
             os.close(self._generation.fd)
@@ -346,7 +347,8 @@ def _replayed(folder: Path, project: Project, generations: list[int]) -> Replay:
                     pool = records.media_pool(project)
                 elif kind == "media":
                     dtype = sample_media.DTYPES[str(head.get("dtype"))]
-                    samples = np.frombuffer(data, dtype=dtype).astype(dtype.newbyteorder("="))
+                    native = dtype.newbyteorder("=")  # a copy: the tile owns its samples
+                    samples = np.frombuffer(data, dtype=dtype).astype(native)
                     samples.setflags(write=False)
                     pool[str(head.get("key"))] = samples
                 elif kind == "edit":
