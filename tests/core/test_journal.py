@@ -215,3 +215,24 @@ def test_random_edits_undos_and_redos_replay_to_the_live_project(tmp_path_factor
     if not (folder / "journal-0.log").exists() and not list(folder.glob("snapshot-*")):
         return  # no edit changed the project (undo at the first step, ...)
     assert _bytes(journal.replay(folder).project) == _bytes(history.project)
+
+
+def test_a_base_written_ahead_spares_the_first_record_the_whole_project(tmp_path):
+    states = _edited()
+    base, edited = states[-2], states[-1]
+    folder = tmp_path / "s"
+    j = journal.Journal(folder)
+    j.start(base, META)
+    j.write_base()
+    j.wait()
+    assert sorted(p.name for p in folder.iterdir()) == ["meta.json", "snapshot-0.htl"]
+    with pytest.raises(ProjectFileError, match="holds no edit"):
+        journal.replay(folder)  # the base alone is nothing to recover
+    j.record(edited)
+    heads = [h for h, _ in _records(journal.journal_path(folder, 0))]
+    assert [h["kind"] for h in heads] == ["base", "edit"] and heads[0]["snapshot"] == 0
+    assert "tiles" not in heads[1]["change"]  # only the track removed
+    assert _bytes(journal.replay(folder).project) == _bytes(edited)
+    journal.snapshot_path(folder, 0).unlink()
+    with pytest.raises(ProjectFileError, match="first snapshot is missing"):
+        journal.replay(folder)

@@ -54,6 +54,7 @@ SNAPSHOT_RECORDS = 500  # records in a generation before the next snapshot is wr
 SNAPSHOT_BYTES = 64 << 20  # or bytes of its journal
 WRITE_CHUNK = 1 << 30  # the most one write() is given
 EMPTY = Project()  # the base of a journal whose first record writes the project whole
+EMPTY_REPLAY = Project()  # where a replay without a snapshot starts
 
 
 def journal_path(folder: Path, generation: int) -> Path:
@@ -156,18 +157,36 @@ class Journal:
         if self._snapshot_due():
             self._start_snapshot(project)
 
-    def _open_first(self) -> None:
-        assert self._state is not None
-        base, meta = self._state, self._meta
+    def write_base(self) -> None:
+        """Write the base now, on a thread, as snapshot 0 (when the journal starts from no file
+        and nothing is written yet), so that the first record need not hold the project whole."""
+        state = self._state
+        if state is None or state is EMPTY or self._meta["file"] is not None or self.active:
+            return
+        if self.writing or snapshot_path(self.folder, 0).exists():
+            return
+        self._write_meta()
+        self._start_thread(state, 0)
+
+    def _write_meta(self) -> None:
         self.folder.mkdir(parents=True, exist_ok=True)
-        text = json.dumps(meta).encode("utf-8")
+        text = json.dumps(self._meta).encode("utf-8")
 
         def write_meta(tmp: Path) -> None:
             tmp.write_bytes(text)
 
         write_atomically(self.folder / "meta.json", write_meta)
+
+    def _open_first(self) -> None:
+        assert self._state is not None
+        base, meta = self._state, self._meta
+        based = not self.writing and snapshot_path(self.folder, 0).exists()  # write_base's
+        self._write_meta()
         self._open_generation(0)
-        if meta["file"] is None:
+        if based:
+            self._known = records.media_keys(base)
+            self._append({"kind": "base", "snapshot": 0})
+        elif meta["file"] is None:
             self._state = EMPTY  # the first record writes the base whole
             self.record(base)
         else:
@@ -211,6 +230,9 @@ class Journal:
         number = self._generation.number + 1
         self._open_generation(number)
         self._known = records.media_keys(project)
+        self._start_thread(project, number)
+
+    def _start_thread(self, project: Project, number: int) -> None:
         self._snapshot = threading.Thread(
             target=self._write_snapshot,
             args=(project, number, self._epoch),
@@ -303,7 +325,12 @@ class Replay:
     records: int
 
 
-def _base_file(head: dict[str, Any]) -> Project:
+def _base_file(head: dict[str, Any], project: Project) -> Project:
+    """The project a base record names: its file, or (snapshot 0) `project`, loaded from it."""
+    if "snapshot" in head:
+        if project is not EMPTY_REPLAY:
+            return project
+        raise ProjectFileError("the autosave's first snapshot is missing or damaged")
     file = head.get("file")
     if file is None:
         return Project()
@@ -323,10 +350,17 @@ def replay(folder: Path) -> Replay:
     there is no state to rebuild, or its base file changed."""
     journals = _generations(folder, "journal-G.log")
     for number in reversed(_generations(folder, "snapshot-G.htl")):
-        with contextlib.suppress(ProjectFileError):  # a damaged one: the older one may load
+        try:
             project = projectfile.load(snapshot_path(folder, number))
-            return _replayed(folder, project, [g for g in journals if g >= number])
-    replayed = _replayed(folder, Project(), journals) if journals[:1] == [0] else None
+        except ProjectFileError:
+            continue  # a damaged one: an older one may load
+        replayed = _replayed(folder, project, [g for g in journals if g >= number])
+        return replayed if number > 0 else _edited(replayed, folder)  # 0: the base, no edit
+    replayed = _replayed(folder, EMPTY_REPLAY, journals) if journals[:1] == [0] else None
+    return _edited(replayed, folder)
+
+
+def _edited(replayed: Replay | None, folder: Path) -> Replay:
     if replayed is None or replayed.records == 0:
         raise ProjectFileError(f"the autosave in {folder} holds no edit")
     return replayed
@@ -343,7 +377,7 @@ def _replayed(folder: Path, project: Project, generations: list[int]) -> Replay:
             kind = head.get("kind")
             try:
                 if kind == "base":
-                    project = _base_file(head)
+                    project = _base_file(head, project)
                     pool = records.media_pool(project)
                 elif kind == "media":
                     dtype = sample_media.DTYPES[str(head.get("dtype"))]
