@@ -132,6 +132,8 @@ def _held_snapshot(monkeypatch):
 def test_a_snapshot_writes_on_its_own_thread_while_edits_are_journaled(window, monkeypatch):
     started, release = _held_snapshot(monkeypatch)
     saver = window.autosaver
+    saver.base_timer.stop()  # no base of the clean project written meanwhile
+    saver.journal.wait()
     saver.journal.snapshot_records = 1  # the first record starts a snapshot
     window.doc.select_clips([window.ids["c1"]])
     window.reverse()
@@ -154,6 +156,8 @@ def test_a_snapshot_writes_on_its_own_thread_while_edits_are_journaled(window, m
 def test_a_discard_waits_for_the_snapshot_and_leaves_no_autosave(window, monkeypatch):
     started, release = _held_snapshot(monkeypatch)
     saver = window.autosaver
+    saver.base_timer.stop()  # no base of the clean project written meanwhile
+    saver.journal.wait()
     saver.journal.snapshot_records = 1
     window.doc.select_clips([window.ids["c1"]])
     window.reverse()
