@@ -38,7 +38,7 @@ odd_values = st.one_of(
 
 def _slow(obj: dict) -> Clip | str:
     try:
-        return projectfile._built(lambda: projectfile._clip(obj, "clip"), "clip")
+        return projectfile.built_at(lambda: projectfile._clip(obj, "clip"), "clip")
     except FieldError as exc:
         return str(exc)
 
@@ -54,11 +54,11 @@ def test_fast_path_agrees_with_the_field_by_field_reader(changes: dict, dropped:
     if fast is not None:
         assert fast == slow and isinstance(slow, Clip)
     if isinstance(slow, Clip):
-        assert projectfile._clip_from_json(obj, "clip") == slow
+        assert projectfile.clip_from_json(obj, "clip") == slow
     else:  # refused: the fast path took no part, the message names the field
         assert fast is None
         with pytest.raises(FieldError, match="clip"):
-            projectfile._clip_from_json(obj, "clip")
+            projectfile.clip_from_json(obj, "clip")
 
 
 def test_plain_clip_takes_the_fast_path_with_every_field():
@@ -85,7 +85,7 @@ def test_each_bad_field_is_refused_with_its_sentence(key: str, value: object, me
     obj = {**PLAIN, key: value}
     assert projectfile._plain_clip(obj) is None
     with pytest.raises(FieldError, match=message):
-        projectfile._clip_from_json(obj, "project.tracks[0].clips[3]")
+        projectfile.clip_from_json(obj, "project.tracks[0].clips[3]")
 
 
 def test_a_sum_that_overflows_only_takes_the_slow_path():
@@ -93,7 +93,7 @@ def test_a_sum_that_overflows_only_takes_the_slow_path():
     assert not math.isfinite(obj["start"] + obj["gain"])
     assert projectfile._plain_clip(obj) is None
     slow = _slow(obj)
-    assert isinstance(slow, Clip) and projectfile._clip_from_json(obj, "clip") == slow
+    assert isinstance(slow, Clip) and projectfile.clip_from_json(obj, "clip") == slow
 
 
 @pytest.mark.parametrize("enabled", [True, False])
@@ -140,7 +140,7 @@ def test_a_clip_line_is_the_json_encoders_text_for_the_clip(
         reverse=reverse, fade_in=Fade(fade, shape), fade_out=Fade(),
     )  # fmt: skip
     assert projectfile._clip_line(clip) == projectfile._COMPACT.encode(
-        projectfile._clip_to_json(clip)
+        projectfile.clip_to_json(clip)
     )
 
 

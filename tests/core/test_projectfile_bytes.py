@@ -128,9 +128,9 @@ def test_a_clip_of_only_the_required_fields_takes_clips_defaults():
     assert [f.key for f in projectfile.CLIP_FIELDS if f.default is dataclasses.MISSING] == list(
         required
     )
-    assert projectfile._clip_from_json(required, "clip") == Clip("c1", "tile1", 0.5, 0.0, 0.2)
+    assert projectfile.clip_from_json(required, "clip") == Clip("c1", "tile1", 0.5, 0.0, 0.2)
     without_start = {k: v for k, v in required.items() if k != "start"}
     with pytest.raises(FieldError, match="clip has no 'start'"):
-        projectfile._clip_from_json(without_start, "clip")
+        projectfile.clip_from_json(without_start, "clip")
     with pytest.raises(FieldError, match=r"clip.fade_in has no 'shape'"):
-        projectfile._clip_from_json({**required, "fade_in": {"length": 0.1}}, "clip")
+        projectfile.clip_from_json({**required, "fade_in": {"length": 0.1}}, "clip")

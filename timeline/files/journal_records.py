@@ -43,12 +43,12 @@ def _clips_delta(old: Track | None, new: Track) -> dict[str, Any]:
     tail = _same_run(reversed(before[head:]), reversed(after[head:]))
     middle = after[head : len(after) - tail]
     known = old.clips_by_id if old is not None and middle else {}
-    mid = [c.id if known.get(c.id) is c else pf._clip_to_json(c) for c in middle]
+    mid = [c.id if known.get(c.id) is c else pf.clip_to_json(c) for c in middle]
     return {"head": head, "tail": tail, "mid": mid}
 
 
 def _track_delta(old: Track | None, new: Track) -> dict[str, Any]:
-    doc = pf._track_to_json(new, lambda _: [])
+    doc = pf.track_to_json(new, lambda _: [])
     doc["clips"] = _clips_delta(old, new)
     return doc
 
@@ -57,7 +57,7 @@ def _tile_json(tile: Tile, media: Media) -> dict[str, Any]:
     """The tile as the project file writes it; a recording is named by its key, kept in media."""
     if isinstance(tile, SampledTile):
         media[tile.key] = tile
-    return pf._tile_to_json(tile, {}, lambda _: {})
+    return pf.tile_to_json(tile, {}, lambda _: {})
 
 
 def _tiles_delta(old: Map, new: Map, media: Media) -> dict[str, Any]:
@@ -69,7 +69,7 @@ def _variant_json(variant: Variant, media: Media) -> dict[str, Any]:
     return {
         "name": variant.name,
         "tiles": {k: _tile_json(t, media) for k, t in variant.tiles.items()},
-        "tracks": [pf._track_to_json(t) for t in variant.tracks],
+        "tracks": [pf.track_to_json(t) for t in variant.tracks],
     }
 
 
@@ -83,7 +83,7 @@ def delta(old: Project, new: Project) -> tuple[dict[str, Any], Media]:
     if old.metadata is not new.metadata and dict(old.metadata) != dict(new.metadata):
         doc["metadata"] = dict(new.metadata)
     if (old.markers, old.loop) != (new.markers, new.loop):
-        doc["markers"] = pf._markers_json(new)
+        doc["markers"] = pf.markers_json(new)
     if old.tracks is not new.tracks:
         by_id = {t.id: t for t in old.tracks}
         doc["tracks"] = [
@@ -130,7 +130,7 @@ def _tile(obj: Any, pool: Pool, where: str) -> Tile:
         rate = fields.number(obj, "rate", where, positive=True)
         name, source = fields.get(obj, "name", str, where), fields.text(obj, "source", where, "")
         return SampledTile.from_checked(pool[key], rate, name, source, key)
-    return pf._tile_from_json(obj, {}, where)
+    return pf.tile_from_json(obj, {}, where)
 
 
 def _clips(old: Track | None, obj: Any, where: str) -> tuple[Clip, ...]:
@@ -145,7 +145,7 @@ def _clips(old: Track | None, obj: Any, where: str) -> tuple[Clip, ...]:
                 raise FieldError(f"{where} names clip {item!r}, which the track lacks")
             mid.append(by_id[item])
         else:
-            mid.append(pf._clip_from_json(item, f"{where}.mid[{i}]"))
+            mid.append(pf.clip_from_json(item, f"{where}.mid[{i}]"))
     return (*before[:head], *mid, *before[len(before) - tail :])
 
 
@@ -159,7 +159,7 @@ def _tracks(old: Sequence[Track], items: Any) -> tuple[Track, ...]:
                 raise FieldError(f"{where} names track {item!r}, which the project lacks")
             tracks.append(by_id[item])
             continue
-        shell = pf._track_from_json({**fields.obj(item, where), "clips": []}, where)
+        shell = pf.track_from_json({**fields.obj(item, where), "clips": []}, where)
         clips = _clips(by_id.get(shell.id), item.get("clips"), f"{where}.clips")
         tracks.append(dataclasses.replace(shell, clips=clips))
     return tuple(tracks)
@@ -171,7 +171,7 @@ def _tiles(old: Map, obj: Any, pool: Pool) -> Map:
     for key in fields.get(obj, "del", list, "record.tiles"):
         tiles.pop(key, None)
     for key, value in changed.items():
-        tiles[key] = pf._built(lambda v=value, k=key: _tile(v, pool, f"tile {k!r}"), key)
+        tiles[key] = pf.built_at(lambda v=value, k=key: _tile(v, pool, f"tile {k!r}"), key)
     return tiles.finish()
 
 
@@ -186,7 +186,7 @@ def _palette(old: Sequence[PaletteTab], items: Any) -> tuple[PaletteTab, ...]:
                 PaletteTab(
                     fields.get(item, "name", str, "palette tab"),
                     fields.get(item, "role", str, "palette tab"),
-                    IdSequence(pf._tile_ids(tiles)),
+                    IdSequence(pf.checked_tile_ids(tiles)),
                 )
             )
     return tuple(tabs)
@@ -204,7 +204,7 @@ def _variants(old: Sequence[Variant], items: Any, pool: Pool) -> tuple[Variant, 
         variants.append(
             Variant(
                 fields.get(item, "name", str, where),
-                tuple(pf._track_from_json(t, f"{where}.tracks") for t in tracks),
+                tuple(pf.track_from_json(t, f"{where}.tracks") for t in tracks),
                 Map({k: _tile(v, pool, f"{where} tile {k!r}") for k, v in tiles.items()}),
             )
         )
@@ -223,7 +223,7 @@ def apply(old: Project, doc: Any, pool: Pool) -> Project:
     if "metadata" in doc:
         changes["metadata"] = fields.get(doc, "metadata", dict, "record")
     if "markers" in doc:
-        changes["markers"], changes["loop"] = pf._markers_from_json(doc["markers"])
+        changes["markers"], changes["loop"] = pf.markers_from_json(doc["markers"])
     if "tracks" in doc:
         changes["tracks"] = _tracks(old.tracks, doc["tracks"])
     if "tiles" in doc:

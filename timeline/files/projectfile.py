@@ -172,7 +172,7 @@ def _fade_to_json(fade: Fade) -> dict[str, Any]:
     return dict(zip(_FADE_KEYS, _fade_values(fade), strict=True))
 
 
-def _clip_to_json(clip: Clip) -> dict[str, Any]:
+def clip_to_json(clip: Clip) -> dict[str, Any]:
     values = list(_clip_values(clip))
     for i in _FADES_AT:
         values[i] = _fade_to_json(values[i])
@@ -204,7 +204,7 @@ _CLIP_LINE, _CLIP_COLUMNS = _line_layout(Clip)
 
 
 def _clip_lines(clips: Sequence[Clip]) -> list[_Line]:
-    """Each clip's line: the same text as json's encoder gives for _clip_to_json(clip)."""
+    """Each clip's line: the same text as json's encoder gives for clip_to_json(clip)."""
     rows = zip(*(column(clips) for column in _CLIP_COLUMNS), strict=True)
     return list(map(_Line, map(_CLIP_LINE.__mod__, rows)))
 
@@ -276,7 +276,7 @@ def _fade(obj: Any, key: str, where: str, default: Fade) -> Fade:
         return default
     where = f"{where}.{key}"
     fade = fields.obj(obj[key], where)
-    return _built(lambda: _record(Fade, fade, where), where)
+    return built_at(lambda: _record(Fade, fade, where), where)
 
 
 # How each kind of field is checked as it is read: (obj, key, where, default) -> value.
@@ -309,7 +309,7 @@ def _base64_entry(tile: SampledTile) -> dict[str, Any]:
     return sample_media.encode(tile.data)
 
 
-def _tile_to_json(tile: Tile, media: dict[str, Any], entry: MediaEntry) -> dict[str, Any]:
+def tile_to_json(tile: Tile, media: dict[str, Any], entry: MediaEntry) -> dict[str, Any]:
     if isinstance(tile, SampledTile):
         if tile.key not in media:  # a recording shared by tiles and variants is encoded once
             media[tile.key] = entry(tile)
@@ -340,10 +340,10 @@ def _tile_to_json(tile: Tile, media: dict[str, Any], entry: MediaEntry) -> dict[
 
 
 def _clips_to_json(clips: Sequence[Clip]) -> list[dict[str, Any]]:
-    return [_clip_to_json(c) for c in clips]
+    return [clip_to_json(c) for c in clips]
 
 
-def _track_to_json(
+def track_to_json(
     track: Track, clips_json: Callable[[Sequence[Clip]], list] = _clips_to_json
 ) -> dict[str, Any]:
     return {
@@ -377,7 +377,7 @@ def to_json(
 
     def tiles(mapping) -> dict[str, Any]:  # in id order, so a saved file's bytes are stable
         return {
-            k: _tile_to_json(mapping[k], media, media_entry) for k in sorted(mapping, key=_id_order)
+            k: tile_to_json(mapping[k], media, media_entry) for k in sorted(mapping, key=_id_order)
         }
 
     body = {
@@ -389,17 +389,17 @@ def to_json(
         "palette": [
             {"name": t.name, "role": t.role, "tiles": list(t.tile_ids)} for t in project.palette
         ],
-        "tracks": [_track_to_json(t, clips_json) for t in project.tracks],
+        "tracks": [track_to_json(t, clips_json) for t in project.tracks],
         "variants": [
             {
                 "name": v.name,
                 "tiles": tiles(v.tiles),
-                "tracks": [_track_to_json(t) for t in v.tracks],  # one line per track
+                "tracks": [track_to_json(t) for t in v.tracks],  # one line per track
             }
             for v in project.variants
         ],
         "active_variant": project.active_variant,
-        **_markers_json(project),
+        **markers_json(project),
     }
     return {"format": FORMAT, "schema": SCHEMA, "project": body, "media": media}
 
@@ -476,8 +476,8 @@ def save(project: Project, path: str | os.PathLike) -> None:
 Media = dict[str, tuple[np.ndarray, ContentKey | None]]
 
 
-def _tile_from_json(obj: Any, media: Media, where: str) -> Tile:
-    return _built(lambda: _tile(obj, media, where), where)
+def tile_from_json(obj: Any, media: Media, where: str) -> Tile:
+    return built_at(lambda: _tile(obj, media, where), where)
 
 
 def _tile(obj: Any, media: Media, where: str) -> Tile:
@@ -523,7 +523,7 @@ def _tile(obj: Any, media: Media, where: str) -> Tile:
     raise FieldError(f"{where} has unknown tile type {kind!r}")
 
 
-def _built(make: Callable[[], Any], where: str) -> Any:
+def built_at(make: Callable[[], Any], where: str) -> Any:
     """make(), with a refused value (EditError) reported at `where`."""
     try:
         return make()
@@ -531,11 +531,11 @@ def _built(make: Callable[[], Any], where: str) -> Any:
         raise FieldError(f"{where}: {exc}") from None
 
 
-def _clip_from_json(obj: Any, where: str) -> Clip:
-    return _plain_clip(obj) or _built(lambda: _clip(obj, where), where)
+def clip_from_json(obj: Any, where: str) -> Clip:
+    return _plain_clip(obj) or built_at(lambda: _clip(obj, where), where)
 
 
-def _track_from_json(obj: Any, where: str) -> Track:
+def track_from_json(obj: Any, where: str) -> Track:
     clips = fields.get(obj, "clips", list, where)
     full_scale = None
     if obj.get("full_scale") is not None:
@@ -544,7 +544,7 @@ def _track_from_json(obj: Any, where: str) -> Track:
         id=fields.get(obj, "id", str, where),
         kind=fields.get(obj, "kind", str, where),
         name=fields.get(obj, "name", str, where),
-        clips=tuple(_clip_from_json(c, f"{where}.clips[{i}]") for i, c in enumerate(clips)),
+        clips=tuple(clip_from_json(c, f"{where}.clips[{i}]") for i, c in enumerate(clips)),
         gain=fields.number(obj, "gain", where, 1.0),
         mute=fields.flag(obj, "mute", where),
         solo=fields.flag(obj, "solo", where),
@@ -552,19 +552,19 @@ def _track_from_json(obj: Any, where: str) -> Track:
     )
 
 
-def _markers_from_json(body: dict) -> tuple[tuple[Marker, ...], LoopRegion | None]:
+def markers_from_json(body: dict) -> tuple[tuple[Marker, ...], LoopRegion | None]:
     markers = []
     for i, m in enumerate(fields.get(body, "markers", list, "project")):
         where = f"project.markers[{i}]"
         name, at = fields.get(m, "name", str, where), fields.number(m, "at", where)
-        markers.append(_built(lambda name=name, at=at: Marker(name, at), where))
+        markers.append(built_at(lambda name=name, at=at: Marker(name, at), where))
     raw = body.get("loop")
     if raw is None:
         return tuple(sorted(markers, key=lambda m: m.at)), None
     if not (isinstance(raw, list) and len(raw) == 2):
         raise FieldError("project.loop should be [start, stop] or null")
     start, stop = (fields.as_number(v, "project.loop") for v in raw)
-    loop = _built(lambda: LoopRegion(start, stop), "project.loop")
+    loop = built_at(lambda: LoopRegion(start, stop), "project.loop")
     return tuple(sorted(markers, key=lambda m: m.at)), loop
 
 
@@ -619,14 +619,14 @@ def from_json(doc: Any, appendix: sample_media.Appendix | None = None) -> Projec
     def tiles(obj: Any, where: str) -> Map:
         return Map(
             {
-                str(k): _tile_from_json(v, media, f"{where} tile {k!r}")
+                str(k): tile_from_json(v, media, f"{where} tile {k!r}")
                 for k, v in fields.get(obj, "tiles", dict, where).items()
             }
         )
 
     def tracks(obj: Any, where: str) -> tuple[Track, ...]:
         return tuple(
-            _track_from_json(t, f"{where}.tracks[{i}]")
+            track_from_json(t, f"{where}.tracks[{i}]")
             for i, t in enumerate(fields.get(obj, "tracks", list, where))
         )
 
@@ -642,7 +642,7 @@ def from_json(doc: Any, appendix: sample_media.Appendix | None = None) -> Projec
         PaletteTab(
             fields.get(t, "name", str, "palette tab"),
             fields.get(t, "role", str, "palette tab"),
-            IdSequence(_tile_ids(fields.get(t, "tiles", list, "palette tab"))),
+            IdSequence(checked_tile_ids(fields.get(t, "tiles", list, "palette tab"))),
         )
         for t in fields.get(body, "palette", list, "project")
     )
@@ -650,8 +650,8 @@ def from_json(doc: Any, appendix: sample_media.Appendix | None = None) -> Projec
     if active is not None and not isinstance(active, str):
         raise FieldError("project.active_variant should be a name or null")
     metadata = fields.json_safe(fields.get(body, "metadata", dict, "project"), "project.metadata")
-    markers, loop = _markers_from_json(body)
-    project = _built(
+    markers, loop = markers_from_json(body)
+    project = built_at(
         lambda: _project(body, tracks, tiles, palette, variants, active, metadata, markers, loop),
         "project",
     )
@@ -685,7 +685,7 @@ def _project(
     )
 
 
-def _tile_ids(items: list) -> list[str]:
+def checked_tile_ids(items: list) -> list[str]:
     if not all(isinstance(i, str) for i in items):
         raise FieldError("a palette tab's tiles should be tile ids (text)")
     return items
@@ -741,7 +741,7 @@ def load(path: str | os.PathLike) -> Project:
     return _opened(read, str(path))
 
 
-def _markers_json(project: Project) -> dict:
+def markers_json(project: Project) -> dict:
     """The markers and loop region as they are stored in a project file."""
     loop = project.loop
     return {
