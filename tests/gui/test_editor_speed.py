@@ -1,8 +1,9 @@
 """What keeps the editor fast at 20,000 clips, asserted as behaviour (timed by
 `haptic-timeline bench editor`, never here): stale limits checks are stopped, closing with checks
 queued says nothing, zoom moves no clip yet places each at start x scale, the waveform editor's
-decimated curve keeps every column's extremes, and the first paint loads no scipy.signal (nor
-importlib.metadata, html, the export dialog or the sound analysis panel)."""
+decimated curve keeps every column's extremes, the first paint loads no scipy.signal (nor
+importlib.metadata, html, the export dialog, the sound analysis panel or the panels built after
+it), and those panels take the places the first frame kept for them."""
 
 from __future__ import annotations
 
@@ -189,6 +190,9 @@ PROBE = """
 import json, os, sys
 DEFERRED = (  # heavy libraries, and what only a command needs
     "scipy.signal", "numba", "importlib.metadata", "html", "timeline.gui.export_options",
+    # the panels built after the first paint, and what only they need
+    "timeline.gui.palette", "timeline.gui.inspector", "timeline.gui.waveform_editor",
+    "timeline.gui.help", "timeline.gui.thumbnails",
 )
 from PySide6.QtCore import QEvent, QObject, QTimer
 from timeline.gui.app import launch
@@ -225,3 +229,38 @@ def test_the_first_paint_loads_neither_scipy_signal_nor_numba_nor_what_commands_
     )
     found = json.loads(done.stdout.strip().splitlines()[-1])
     assert found == {"modules": [], "analysis_panel": False}
+
+
+def _places(win) -> list[tuple[int, int, int, int]]:  # noqa: ANN001
+    """Where the window's regions are: each splitter pane and the lanes, in window pixels."""
+    widgets = [s.widget(i) for s in win.splitters().values() for i in range(s.count())]
+    rects = [w.geometry().translated(w.parentWidget().mapTo(win, QPoint())) for w in widgets]
+    rects.append(win.view.geometry().translated(win.view.parentWidget().mapTo(win, QPoint())))
+    return [r.getRect() for r in rects]
+
+
+def test_the_panels_built_after_the_first_paint_take_the_places_it_kept(qtbot):
+    from timeline.files import projectfile
+    from timeline.gui.first_paint import after_first_paint
+    from timeline.gui.inspector import Inspector
+    from timeline.gui.main_window import MainWindow
+    from timeline.gui.palette import Palette
+    from timeline.gui.waveform_editor import WaveformEditor
+
+    win = MainWindow(projectfile.load(EXAMPLE), EXAMPLE, panels_after_paint=True)
+    qtbot.addWidget(win)
+    first: dict[str, object] = {}
+
+    def at_first_paint() -> None:  # runs before the window's own work after that paint
+        first.update(places=_places(win), panels=win.findChildren(Palette))
+        first.update(menu_empty=win.menus["edit"].isEmpty())
+
+    after_first_paint(win.view.viewport(), at_first_paint)
+    win.resize(800, 600)  # small: the panels' minimum sizes bind
+    win.show()
+    qtbot.waitUntil(lambda: bool(win.findChildren(Inspector)), timeout=10_000)
+    assert first["panels"] == [] and first["menu_empty"] and first["places"]
+    assert _places(win) == first["places"]  # nothing moved or changed size
+    assert len(win.findChildren(Palette)) == len(win.findChildren(WaveformEditor)) == 1
+    undo = [a for a in win.menus["edit"].actions() if a.shortcut().toString() == "Ctrl+Z"]
+    assert len(undo) == 1 and win.tile_palette.isVisible() and win.inspector.isVisible()

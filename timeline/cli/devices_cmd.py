@@ -6,6 +6,7 @@ import argparse
 import warnings
 
 from timeline import plugins
+from timeline.plugins import discovery
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -16,12 +17,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def describe_devices() -> list[str]:
     """One line per device plugin (and per unit found); a plugin that finds nothing says so,
     and why when a library it needs is missing."""
-    from importlib.metadata import entry_points
-
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         loaded = plugins.load_group(plugins.DEVICES)
-    names = sorted({ep.name for ep in entry_points(group=plugins.DEVICES)} | set(loaded))
+    names = sorted(set(discovery.names(plugins.DEVICES)) | set(loaded))
     lines = []
     for name in names:
         if name not in loaded:

@@ -26,8 +26,11 @@ def run(path: str | None = None) -> int:
 def launch(path: str | None = None) -> tuple[QApplication, MainWindow]:
     """The application and its window shown on a project (painted once the event loop runs).
 
-    Nothing on the way to the first paint loads scipy.signal or numba: the findings check starts
-    after it (findings_overlay) and the sound analysis with the first sound converted.
+    The first frame shows the lanes, the transport and the menu bar; the palette, the waveform
+    editor, the inspector and the menus' actions are built right after it (MainWindow's
+    `panels_after_paint`). Nothing on the way to the first paint loads scipy.signal or numba:
+    the findings check starts after it (findings_overlay) and the sound analysis with the first
+    sound converted.
     """
     from PySide6.QtWidgets import QApplication
 
@@ -38,7 +41,7 @@ def launch(path: str | None = None) -> tuple[QApplication, MainWindow]:
     assert isinstance(app, QApplication)
     app.setOrganizationName(ORGANISATION)
     app.setApplicationName("haptic-timeline")
-    window = MainWindow(project, Path(path) if path else None)
+    window = MainWindow(project, Path(path) if path else None, panels_after_paint=True)
     screen = QApplication.primaryScreen()
     if screen is not None:
         fit_to_screen(window, screen.availableGeometry(), keep_place=window.restored)

@@ -112,12 +112,12 @@ def help_dialog(parent: QWidget, title: str, text: str) -> QDialog:
 
 
 class HelpMenu:
-    """Help > Keyboard shortcuts and Help > First steps; each opens its page beside the window."""
+    """Help > Keyboard shortcuts and Help > First steps (in the window's Help `menu`); each opens
+    its page beside the window."""
 
-    def __init__(self, window: QMainWindow) -> None:
+    def __init__(self, window: QMainWindow, menu: QMenu) -> None:
         self.window = window
         self.page: QDialog | None = None
-        menu = window.menuBar().addMenu("&Help")
         self.menu = menu
         self.shortcuts_action = menu.addAction("&Keyboard shortcuts", self.show_shortcuts)
         self.shortcuts_action.setShortcut(QKeySequence("F1"))

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence
+from PySide6.QtCore import QSize, Qt
+from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence, QPalette
 from PySide6.QtWidgets import (
     QApplication,
     QDialog,
@@ -37,11 +37,9 @@ from .clipboard import ClipClipboard
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .findings_overlay import FindingsOverlay
+from .first_paint import after_first_paint
 from .gestures.pivot import PivotGesture
-from .help import HelpMenu
-from .inspector import Inspector
 from .message_bar import MessageBar
-from .palette import Palette
 from .player import Player
 from .recent import recent_files, remember
 from .ripple import remove_rippled
@@ -52,7 +50,12 @@ from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
 from .transport import Transport
-from .waveform_editor import WaveformEditor, read_range
+
+if TYPE_CHECKING:
+    from .help import HelpMenu
+    from .inspector import Inspector
+    from .palette import Palette
+    from .waveform_editor import WaveformEditor
 
 APP_NAME = "Haptic Timeline"
 DEFAULT_SIZE = (1400, 860)
@@ -61,6 +64,20 @@ SPLITS = {
     "top": ("top_split", [320, 1080], [0, 1]),
     "bottom": ("bottom_split", [540, 250, 610], [1, 0, 0]),
     "main": ("main_split", [560, 260], [3, 1]),
+}
+# the smallest the panels built after the first paint may be (their places in the first frame
+# are as small, so a small window lays out the same before and after): about their own
+# minimum size hints for the palette and the waveform editor, the inspector's scroll area's
+PALETTE_MIN, EDITOR_MIN, INSPECTOR_MIN = QSize(256, 160), QSize(345, 181), QSize(120, 68)
+# the menu bar's menus, shown by the first frame and filled after it
+MENUS = {
+    "file": "&File",
+    "edit": "&Edit",
+    "view": "&View",
+    "play": "&Transport",
+    "variants": "&Variants",
+    "tracks": "T&racks",
+    "help": "&Help",
 }
 
 
@@ -82,24 +99,62 @@ def _scrolled(widget: QWidget) -> QScrollArea:
     return area
 
 
-class MainWindow(QMainWindow):
-    """One window for the whole design loop: shape a tile, place it, play it, feel it, undo."""
+def _take_place(splitter: QSplitter, index: int, panel: QWidget) -> None:
+    """Put `panel` where the splitter's widget at `index` is, at its size and with its minimum
+    size, and delete that one.
 
-    def __init__(self, project: Project | None = None, path: Path | None = None) -> None:
+    (QSplitter.replaceWidget would leave the panel owned by Python, not by the splitter.)
+    """
+    sizes = splitter.sizes()
+    slot = splitter.widget(index)
+    panel.setMinimumSize(slot.minimumSize())
+    splitter.insertWidget(index, panel)
+    slot.hide()
+    slot.setParent(None)  # type: ignore[call-overload]
+    slot.deleteLater()
+    splitter.setSizes(sizes)
+
+
+class _Slot(QWidget):
+    """The place a panel built after the first paint will take: the window's plain background."""
+
+    def __init__(self, minimum: QSize) -> None:
+        super().__init__()
+        self.setMinimumSize(minimum)
+        self.setAutoFillBackground(True)
+        self.setBackgroundRole(QPalette.ColorRole.Window)
+
+
+class MainWindow(QMainWindow):
+    """One window for the whole design loop: shape a tile, place it, play it, feel it, undo.
+
+    The first frame shows the lanes (with their headers and ruler), the transport and the menu
+    bar; with `panels_after_paint` (the editor's launch) the palette, the waveform editor, the
+    inspector and the menus' actions are built right after it, in the places it kept for them.
+    Otherwise, and whenever one of those panels is asked for sooner, they are built at once.
+    """
+
+    def __init__(
+        self,
+        project: Project | None = None,
+        path: Path | None = None,
+        panels_after_paint: bool = False,
+    ) -> None:
         super().__init__()
         self.doc = Document(project or fresh_project(), path)
         self.player = Player(self)
         self.jobs: list[FileJob] = []
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
+        self.clip_actions: list[QAction] = []
+        self._panels: tuple[Palette, WaveformEditor, Inspector] | None = None
         self._build()
         self.autosaver = Autosaver(self.doc)
         if project is not None and path is not None:
             self.autosaver.on_disk(path)  # the journal starts from the file opened
         self.autosaver.failed.connect(lambda text: self.messages.show_message(text, "error"))
         self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
-        self.rendered_action = self.findings.rendered.add_action(
-            self.view_menu, self.findings.show_rendered
-        )
+        if not panels_after_paint:
+            self.build_panels()
         self.transport.device.currentTextChanged.connect(lambda _: self.findings.schedule())
         self.transport.hand_changed.connect(lambda _: self.findings.hand_changed())
         self.doc.changed.connect(self._changed)
@@ -116,6 +171,8 @@ class MainWindow(QMainWindow):
         self.transport.show_position(0.0, self.doc.project.axis)
         self.resize(*DEFAULT_SIZE)
         self.restored = window_state.restore(self)  # size, splitters, docks and hand
+        if panels_after_paint:
+            after_first_paint(self.view.viewport(), self.build_panels)
 
     # --- layout ----------------------------------------------------------------------------
 
@@ -125,9 +182,6 @@ class MainWindow(QMainWindow):
         self.headers = HeaderColumn(doc)
         self.ruler = Ruler(self.view)
         self.ruler.scrubber = Scrubber(self.player, lambda: self.doc.project)
-        self.tile_palette = Palette(doc)
-        self.editor = WaveformEditor(doc)
-        self.inspector = Inspector(doc)
         self.transport = Transport(self.player)
         self.arrange = Arrange(doc, self.view, self.ruler, lambda: self.player.playing)
         self.clipboard = ClipClipboard(doc, self.arrange.here)
@@ -137,7 +191,6 @@ class MainWindow(QMainWindow):
         )
         self.view.files_dropped.connect(self.import_files)
         self.view.context_requested.connect(self._fill_clip_menu)
-        self.tile_palette.range_dropped.connect(self._range_dropped)
         self.transport.play_button.clicked.connect(lambda _=False: self.play_stop())
         self.transport.hand_changed.connect(self._hand_changed)
         self.ruler.clicked.connect(self._ruler_clicked)
@@ -157,11 +210,11 @@ class MainWindow(QMainWindow):
         grid.addWidget(self.view, 1, 1)
 
         self.top_split = top = QSplitter(Qt.Orientation.Horizontal)
-        top.addWidget(self.tile_palette)
+        top.addWidget(_Slot(PALETTE_MIN))
         top.addWidget(lanes)
         self.bottom_split = bottom = QSplitter(Qt.Orientation.Horizontal)
-        bottom.addWidget(self.editor)
-        bottom.addWidget(_scrolled(self.inspector))
+        bottom.addWidget(_Slot(EDITOR_MIN))
+        bottom.addWidget(_Slot(INSPECTOR_MIN))
         bottom.addWidget(self.transport)
         self.main_split = main = QSplitter(Qt.Orientation.Vertical)
         main.addWidget(top)
@@ -175,7 +228,55 @@ class MainWindow(QMainWindow):
         self.setCentralWidget(main)
         self.statusBar().addWidget(self.messages, 1)
         self.statusBar().setSizeGripEnabled(False)
+        self.menus = {key: self.menuBar().addMenu(title) for key, title in MENUS.items()}
+        self.sound_import = SoundImport(self)  # its dock is restored with the window's state
+
+    def build_panels(self) -> None:
+        """Build the palette, the waveform editor, the inspector and the menus' actions (once),
+        each panel in the place the first frame kept for it."""
+        if self._panels is not None:
+            return
+        from .help import HelpMenu
+        from .inspector import Inspector
+        from .palette import Palette
+        from .waveform_editor import WaveformEditor
+
+        palette, editor = Palette(self.doc), WaveformEditor(self.doc)
+        self._panels = (palette, editor, Inspector(self.doc))
+        palette.range_dropped.connect(self._range_dropped)
+        for splitter, index, panel in (
+            (self.top_split, 0, palette),
+            (self.bottom_split, 0, editor),
+            (self.bottom_split, 1, _scrolled(self._panels[2])),
+        ):
+            _take_place(splitter, index, panel)
         self._menus()
+        self.rendered_action = self.findings.rendered.add_action(
+            self.view_menu, self.findings.show_rendered
+        )
+        self.help: HelpMenu = HelpMenu(self, self.menus["help"])
+        self._update_actions()
+
+    @property
+    def tile_palette(self) -> Palette:
+        """The tile palette (built now if it was not yet)."""
+        self.build_panels()
+        assert self._panels is not None
+        return self._panels[0]
+
+    @property
+    def editor(self) -> WaveformEditor:
+        """The waveform editor (built now if it was not yet)."""
+        self.build_panels()
+        assert self._panels is not None
+        return self._panels[1]
+
+    @property
+    def inspector(self) -> Inspector:
+        """The inspector (built now if it was not yet)."""
+        self.build_panels()
+        assert self._panels is not None
+        return self._panels[2]
 
     def splitters(self) -> dict[str, QSplitter]:
         """The window's splitters by name (what window_state remembers)."""
@@ -199,8 +300,7 @@ class MainWindow(QMainWindow):
         return action
 
     def _menus(self) -> None:
-        bar = self.menuBar()
-        file = bar.addMenu("&File")
+        file = self.menus["file"]
         self._action(file, "&New", lambda: self.new_project("time"), QKeySequence.StandardKey.New)
         self._action(file, "New &position project", lambda: self.new_project("position"))
         self._action(file, "&Open…", self.open_dialog, QKeySequence.StandardKey.Open)
@@ -210,13 +310,12 @@ class MainWindow(QMainWindow):
         self._action(file, "Save &as…", self.save_as_dialog, "Ctrl+Shift+S")
         file.addSeparator()
         self._action(file, "&Import…", self.import_dialog, "Ctrl+Shift+I")
-        self.sound_import = SoundImport(self)
         self.sound_import.add_actions(file)
         self._action(file, "&Export…", self.export_dialog, "Ctrl+E")
         file.addSeparator()
         self._action(file, "&Quit", self.close, QKeySequence.StandardKey.Quit)
 
-        edit = bar.addMenu("&Edit")
+        edit = self.menus["edit"]
         edit.aboutToShow.connect(self._name_undo_steps)
         self.undo_action = self._action(edit, "&Undo", self.doc.undo, "Ctrl+Z")
         self.redo_action = self._action(edit, "&Redo", self.doc.redo, "Ctrl+Shift+Z")
@@ -254,7 +353,7 @@ class MainWindow(QMainWindow):
         self.ripple_action = self._action(edit, "Ri&pple edit", self.toggle_ripple)
         self.ripple_action.setCheckable(True)
 
-        view = bar.addMenu("&View")
+        view = self.menus["view"]
         self._action(view, "Zoom &in", lambda: self.view.zoom(ZOOM_STEP), "Ctrl+=")
         self._action(view, "Zoom &out", lambda: self.view.zoom(1 / ZOOM_STEP), "Ctrl+-")
         self._action(view, "&Fit project", self.view.fit, "Ctrl+0")
@@ -263,7 +362,7 @@ class MainWindow(QMainWindow):
         self.snap_action.setChecked(True)
         self.view_menu = view
 
-        play = bar.addMenu("&Transport")
+        play = self.menus["play"]
         self._action(play, "&Play / stop", self.play_stop, "Space")
         self._action(play, "&Loop (the loop region if one is set)", self.transport.loop.toggle, "L")
         play.addSeparator()
@@ -271,7 +370,7 @@ class MainWindow(QMainWindow):
         self._action(play, "&Next marker", lambda: arrange.jump(1), "]")
         self._action(play, "P&revious marker", lambda: arrange.jump(-1), "[")
 
-        var = bar.addMenu("&Variants")
+        var = self.menus["variants"]
         self._action(var, "&Save design as variant", self.save_variant, "Ctrl+Shift+V")
         self._action(var, "Switch to &next variant", self.next_variant, "V")
         self._action(var, "&Delete the active variant", self.delete_variant)
@@ -281,9 +380,7 @@ class MainWindow(QMainWindow):
         self.variants_menu = var
         var.aboutToShow.connect(lambda: fill_variants(var, self.doc, self.switch_variant))
 
-        tracks = bar.addMenu("T&racks")
-        self._action(tracks, "&Add track…", self.headers._show_kinds)
-        self.help = HelpMenu(self)
+        self._action(self.menus["tracks"], "&Add track…", self.headers._show_kinds)
 
     def _similarity(self, what: str) -> None:
         """Open a map by feel (its module, with the similarity measures, loads on first use)."""
@@ -443,6 +540,8 @@ class MainWindow(QMainWindow):
             self.messages.show_message(f"deleted variant {name} (Ctrl+Z brings it back)")
 
     def _range_dropped(self, tab: str, mime) -> None:
+        from .waveform_editor import read_range
+
         tile_id, a, b = read_range(mime)
         self.editor.range_to_palette(tab, tile_id, a, b)
 

@@ -168,7 +168,7 @@ class TimelineScene(QGraphicsScene):
             if tile is None:
                 tile = tiles[clip.tile_id] = project.tile(clip.tile_id)
             item = self.items_by_clip.get(clip.id)
-            before_rect = None if item is None else item.sceneBoundingRect()
+            before_rect = None if item is None or before is None else item.sceneBoundingRect()
             if item is None:
                 item = self.items_by_clip[clip.id] = ClipItem(self.lane_geometry, clip, tile)
             changed = item.update_from(
@@ -183,10 +183,12 @@ class TimelineScene(QGraphicsScene):
                 covered.get(clip.id, ()),
                 project.axis,
             )
-            if changed:
+            if changed and before is not None:
                 self.update(item.sceneBoundingRect())
                 if before_rect is not None:
                     self.update(before_rect)
+        if before is None:  # a track shown anew (all of them on opening): one repaint of the
+            self.update()  # whole scene rather than one per clip (20,000 on a large project)
         selected = frozenset(c.id for c in track.clips if c.id in self.selection)
         clips = LaneClips([self.items_by_clip[c.id] for c in track.clips])
         return _TrackShown(track, lane, selected, view, tiles, clips)

@@ -10,7 +10,6 @@ import warnings
 from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cache, reduce
-from importlib.machinery import PathFinder
 from typing import Any
 
 from timeline.errors import PluginError
@@ -42,44 +41,33 @@ class Entry:
 
 
 @cache
-def _entry_points(group: str) -> tuple:
+def _entry_points(group: str) -> tuple[Entry, ...]:
     """The group's entry points in name order (read once)."""
-    table = _table()
-    if table is None:  # a layout the plain reading below does not cover
-        from importlib.metadata import entry_points  # ~40 ms with the email package it loads
-
-        return tuple(sorted(entry_points(group=group), key=lambda e: e.name))
-    return tuple(sorted((e for e in table if e.group == group), key=lambda e: e.name))
+    return tuple(sorted((e for e in _table() if e.group == group), key=lambda e: e.name))
 
 
 @cache
-def _table() -> tuple[Entry, ...] | None:
-    """Every installed entry point, read as importlib.metadata.entry_points() reads them (the
-    first distribution of a name on sys.path wins; its entry_points.txt in file order), without
-    importing importlib.metadata, which cost the editor's launch ~40 ms. None where a
-    distribution could come from elsewhere: a finder other than the path finder, a zip or an
-    .egg on sys.path."""
-    finders = [f for f in sys.meta_path if hasattr(f, "find_distributions")]
-    if finders != [PathFinder]:
-        return None
+def _table() -> tuple[Entry, ...]:
+    """Every entry point of the distributions installed in sys.path's folders, as
+    importlib.metadata.entry_points() gives them there: each `.dist-info` or `.egg-info` folder's
+    entry_points.txt in file order, the first distribution of a name on sys.path winning.
+
+    Read here rather than by importlib.metadata, whose import (with the email package) cost the
+    editor's launch 25-50 ms of CPU (docs/performance.md). What pip writes is read; a zip or an
+    .egg on sys.path, which pip never installs, is not (importlib.metadata would look inside).
+    """
     seen: set[str] = set()
     found: list[Entry] = []
     for root in sys.path:
-        if root.lower().endswith(".egg") or (root and os.path.isfile(root)):
-            return None
         try:
             children = os.listdir(root or ".")
-        except OSError:
+        except OSError:  # missing, or a file (a zip)
             continue
-        stems = _distributions(children)
-        if not all(stem.endswith((".dist-info", ".egg-info")) for stem in stems):
-            return None  # importlib.metadata names such a one from its METADATA
-        for stem in stems:
+        for stem in _distributions(children):
             name = _normalized(stem)
-            if name in seen:
-                continue
-            seen.add(name)
-            found += _parse(_read(os.path.join(root or ".", stem, "entry_points.txt")))
+            if name not in seen:
+                seen.add(name)
+                found += _parse(_read(os.path.join(root or ".", stem, "entry_points.txt")))
     return tuple(found)
 
 
@@ -96,14 +84,14 @@ def _distributions(children: list[str]) -> list[str]:
 def _normalized(stem: str) -> str:
     """The distribution's name in a folder name ("Foo_Bar-1.0.dist-info" -> "foo_bar")."""
     name = stem.lower().rpartition(".")[0].partition("-")[0]
-    return re.sub(r"[-_.]+", "-", name).replace("-", "_")
+    return re.sub(r"[-_.]+", "_", name)
 
 
 def _read(path: str) -> str:
     try:
         with open(path, encoding="utf-8") as file:
             return file.read()
-    except (FileNotFoundError, IsADirectoryError, NotADirectoryError, PermissionError):
+    except OSError:  # no entry points, or not a folder
         return ""
 
 
@@ -126,7 +114,7 @@ _loaded: dict[tuple[str, str], Any] = {}  # (group, name) -> plugin, or None if 
 _FAILED = object()
 
 
-def _load(group: str, ep: Any) -> Any:
+def _load(group: str, ep: Entry) -> Any:
     """One plugin, loaded once; a broken one warns once and gives _FAILED."""
     key = (group, ep.name)
     if key not in _loaded:
