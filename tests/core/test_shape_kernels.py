@@ -71,6 +71,10 @@ SINES = [
     generator("chirp", 0.9, f0=1_200.0, f1=5.0, exponential=1.0),
     generator("detents", 1.5, count=12.0, phase=0.3),
     generator("detents", 1.0, count=-3.0, amplitude=1e308),
+    generator("adsr", 1.0),
+    generator("adsr", 0.8, attack=0.0, decay=0.3, sustain=-0.4, release=0.9),
+    generator("adsr", 0.5, attack=0.2, decay=0.0, sustain=1e-310, release=0.0),
+    generator("adsr", 2.0, attack=1.5, decay=1.0, sustain=0.7, release=1.2),  # phases overlap
 ]
 
 
@@ -78,7 +82,7 @@ SINES = [
 @pytest.mark.parametrize(("u0", "du", "n"), [(0.0, 1e-4, 20_000), (-0.0, -1e-4, 3),
                                              (-0.3, 1 / 44_100, 60_000), (1.4, -1 / 7_919.3, 9_000),
                                              (0.123456789, 0.037, 40)])  # fmt: skip
-def test_the_sine_chirp_and_detent_loops_give_the_numpy_bits(tile, u0, du, n):
+def test_the_sine_chirp_detent_and_adsr_loops_give_the_numpy_bits(tile, u0, du, n):
     _same_bits(tile, u0 * tile.duration, du, n)  # -0.0: numpy's signed zeros kept
 
 
@@ -143,12 +147,12 @@ def test_the_fade_loop_gives_the_numpy_bits(length, fade_in, fade_out, rate, n, 
 
 def test_the_loops_are_taken_once_loaded_and_left_where_numpy_masks():
     args = (1.0, 0.0, 1e-4, 10_000, 5000.0)
-    for name in ("sine", "chirp", "detents", "am", "noise"):
+    for name in ("sine", "chirp", "detents", "am", "noise", "adsr"):
         tile = generator(name, 1.0)
         assert grid_shapes.generator_on_grid(name, dict(tile.params), *args) is not None, name
     high = dict(generator("am", 1.0, carrier=4_990.0, modulation=20.0).params)  # past Nyquist
     assert grid_shapes.generator_on_grid("am", high, *args) is None
-    for name in ("square", "adsr"):
+    for name in ("square", "wall"):
         assert grid_shapes.generator_on_grid(name, dict(generator(name, 1.0).params), *args) is None
 
 

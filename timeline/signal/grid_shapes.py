@@ -18,7 +18,7 @@ from timeline.signal.band_limit import HIGHEST_FREQUENCY, noise_level
 from timeline.signal.generators import TWO_PI
 
 _INDEX_LIMIT = 2.0**62  # |u * lattice| below this converts to int64 exactly
-_KINDS = ("sine", "chirp", "detents", "am", "noise")  # generators with a loop
+_KINDS = ("sine", "chirp", "detents", "am", "noise", "adsr")  # generators with a loop
 
 
 def _ends(u0: float, du: float, n: int) -> tuple[float, float]:
@@ -50,6 +50,8 @@ def generator_on_grid(generator: str, params: Mapping[str, float], duration: flo
     elif generator == "chirp":
         if not _chirp(k, p, duration, u0, du, out):
             return None
+    elif generator == "adsr":
+        k.adsr(u0, du, out, duration, p["attack"], p["decay"], p["sustain"], p["release"])
     elif generator == "detents":
         period = duration / p["count"]
         k.detents(u0, du, out, duration, p["phase"] * period, period, -p["amplitude"])

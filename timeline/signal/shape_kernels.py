@@ -2,7 +2,7 @@
 
 Each loop builds the grid u = u0 + du*i itself, evaluates the shape, zeroes it outside the tile
 and writes the result once, where the numpy forms (timeline.signal.generators, splines, fades)
-make a temporary array per operation: sine, chirp, detents, AM, noise, splines and fades. A
+make a temporary array per operation: sine, chirp, detents, AM, noise, ADSR, splines and fades. A
 sine, chirp or detent series is one libm sin per sample either way; its loop saves the grid,
 the temporaries and the mask around it (~7 ns of ~23 a sample). Every loop performs the numpy
 form's operations in its order, each rounded on its own (numba neither reorders nor fuses a
@@ -92,6 +92,29 @@ def detents(u0: float, du: float, out: np.ndarray, duration: float, shift: float
             out[i] = 0.0
         else:
             out[i] = negated * math.sin(TWO_PI * (u - shift) / period)
+
+
+@njit(cache=True)
+def adsr(u0: float, du: float, out: np.ndarray, duration: float, attack: float, decay: float,
+         sustain: float, release: float) -> None:  # fmt: skip
+    """generators._adsr: each sample takes the last of its phases that applies (attack, decay,
+    release over sustain), as the numpy form's masked assignments do one after another."""
+    decayed = attack + decay
+    release_start = duration - release
+    drop = 1.0 - sustain
+    for i in range(out.shape[0]):
+        u = _grid(u0, du, i)
+        v = sustain
+        if attack > 0.0 and u < attack:
+            v = u / attack
+        if decay > 0.0 and u >= attack and u < decayed:
+            v = 1.0 - drop * (u - attack) / decay
+        if release > 0.0 and u >= release_start:
+            x = (duration - u) / release
+            x = x if x > 0.0 else 0.0  # np.clip's order, as _fade_gain
+            x = x if x < 1.0 else 1.0
+            v = sustain * x
+        out[i] = 0.0 if u < 0.0 or u > duration else v
 
 
 @njit(cache=True)
