@@ -176,15 +176,13 @@ def profile_table(top: dict[str, Any]) -> Table:
                   ["stage", "CPU s", "/ memory pass"])  # fmt: skip
     for name, spent in sorted(stages.items(), key=lambda kv: -kv[1]):
         table.rows.append([name, spent, spent / base])
-    rest = top["full"] - sum(stages.values())
-    table.rows.append(["bookkeeping (the rest: calls, grids, caches, allocations)", rest,
-                       rest / base])  # fmt: skip
-    table.rows.append(["full render", top["full"], top["full"] / base])
+    whole = sum(stages.values())
+    table.rows.append(["the profiled render", whole, whole / base])
     fourier = stages.get("square: Fourier sum", 0.0)
     floor = top["libm"] + fourier
     table.notes += [
         "each stage: the exclusive CPU of the functions doing it, timed inside one full render "
-        "(less the clock's own cost per call); bookkeeping: the unwrapped render's CPU beyond them",
+        "(less the clock's own cost per call); bookkeeping: the rest of that render's CPU",
         f"floor of any render with these bits: the {top['libm_calls']:,} sin/cos evaluations of "
         f"the numpy forms, timed call by call, {top['libm']:.3f} s "
         f"({1e9 * top['libm'] / max(1, top['libm_calls']):.1f} ns each, "
