@@ -3,8 +3,9 @@
 Each loop builds the grid u = u0 + du*i itself, evaluates the shape, zeroes it outside the tile
 and writes the result once, where the numpy forms (timeline.signal.generators, splines, fades)
 make a temporary array per operation: sine, chirp, detents, AM, noise, ADSR, splines and fades. A
-sine, chirp or detent series is one libm sin per sample either way; its loop saves the grid,
-the temporaries and the mask around it (~7 ns of ~23 a sample). Every loop performs the numpy
+sine, chirp or detent series is one libm sin per sample either way (1.00-1.03x on a warm
+clip); in a render, where each clip's temporaries are fresh memory, its loop saves allocating
+and first touching them. Every loop performs the numpy
 form's operations in its order, each rounded on its own (numba neither reorders nor fuses a
 multiply-add without fastmath), and calls the same libm functions numpy calls for float64 (sin,
 cos, pow, expm1), so it gives numpy's bits: tests/core/test_shape_kernels.py holds each to
