@@ -19,6 +19,20 @@ from timeline.signal.render_kernels import fourier_real, scaled_add
 ANY_FLOAT = st.floats(allow_nan=False, allow_infinity=False, width=64)
 
 
+@pytest.mark.parametrize(
+    "x",
+    [[-0.0], [0.0, -3.5, 2.0], [5e-324, -5e-324], [1.0, -np.inf, 2.0], [1.0, np.nan, -7.0],
+     [np.nan, np.inf], [np.inf, np.nan], list(np.random.default_rng(1).standard_normal(999))],
+)  # fmt: skip
+def test_the_compiled_peak_is_numpys_largest_magnitude(x, monkeypatch):
+    values = np.array(x)
+    values.setflags(write=False)  # pieces are read-only
+    compiled = mixer.peak_of(values)
+    monkeypatch.delitem(sys.modules, "timeline.signal.render_kernels")
+    assert np.array_equal(compiled, mixer.peak_of(values), equal_nan=True)
+    assert np.array_equal(compiled, np.max(np.abs(values)), equal_nan=True)
+
+
 @settings(max_examples=100, deadline=None)
 @given(
     arrays(np.float64, st.integers(0, 300), elements=ANY_FLOAT),

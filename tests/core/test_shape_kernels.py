@@ -61,6 +61,36 @@ def test_each_generator_loop_gives_the_numpy_bits(kind, data, amplitude, duratio
     _same_bits(tile, start * duration, du, n)  # grids inside, across and outside the tile
 
 
+SINES = [
+    generator("sine", 0.7, frequency=37.0, phase=-2.1, amplitude=-3.7),
+    generator("sine", 2.0, frequency=-1_300.0, amplitude=5e-324),
+    generator("sine", 1.0, frequency=0.0, phase=0.0, amplitude=1e308),
+    generator("chirp", 1.3, f0=20.0, f1=300.0, amplitude=1e300),
+    generator("chirp", 1.0, f0=400.0, f1=-90.0),
+    generator("chirp", 0.9, f0=5.0, f1=1_200.0, exponential=1.0, amplitude=-1e-300),
+    generator("chirp", 0.9, f0=1_200.0, f1=5.0, exponential=1.0),
+    generator("detents", 1.5, count=12.0, phase=0.3),
+    generator("detents", 1.0, count=-3.0, amplitude=1e308),
+    generator("adsr", 1.0),
+    generator("adsr", 0.8, attack=0.0, decay=0.3, sustain=-0.4, release=0.9),
+    generator("adsr", 0.5, attack=0.2, decay=0.0, sustain=1e-310, release=0.0),
+    generator("adsr", 2.0, attack=1.5, decay=1.0, sustain=0.7, release=1.2),  # phases overlap
+]
+
+
+@pytest.mark.parametrize("tile", SINES, ids=lambda t: t.generator)
+@pytest.mark.parametrize(("u0", "du", "n"), [(0.0, 1e-4, 20_000), (-0.0, -1e-4, 3),
+                                             (-0.3, 1 / 44_100, 60_000), (1.4, -1 / 7_919.3, 9_000),
+                                             (0.123456789, 0.037, 40)])  # fmt: skip
+def test_the_sine_chirp_detent_and_adsr_loops_give_the_numpy_bits(tile, u0, du, n):
+    _same_bits(tile, u0 * tile.duration, du, n)  # -0.0: numpy's signed zeros kept
+
+
+def test_an_exponential_chirp_of_one_frequency_keeps_numpy():
+    params = dict(generator("chirp", 1.0, f0=50.0, f1=50.0, exponential=1.0).params)
+    assert grid_shapes.generator_on_grid("chirp", params, 1.0, -0.0, -1e-4, 10, 5000.0) is None
+
+
 @settings(max_examples=60, deadline=None)
 @given(
     knots=st.lists(st.floats(0.0, 10.0), min_size=3, max_size=12, unique=True),
@@ -117,12 +147,12 @@ def test_the_fade_loop_gives_the_numpy_bits(length, fade_in, fade_out, rate, n, 
 
 def test_the_loops_are_taken_once_loaded_and_left_where_numpy_masks():
     args = (1.0, 0.0, 1e-4, 10_000, 5000.0)
-    for name in ("am", "noise"):
+    for name in ("sine", "chirp", "detents", "am", "noise", "adsr"):
         tile = generator(name, 1.0)
         assert grid_shapes.generator_on_grid(name, dict(tile.params), *args) is not None, name
     high = dict(generator("am", 1.0, carrier=4_990.0, modulation=20.0).params)  # past Nyquist
     assert grid_shapes.generator_on_grid("am", high, *args) is None
-    for name in ("sine", "square"):
+    for name in ("square", "wall"):
         assert grid_shapes.generator_on_grid(name, dict(generator(name, 1.0).params), *args) is None
 
 

@@ -24,6 +24,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -139,9 +140,10 @@ def startup_costs(repeat: int) -> dict[str, float]:
         }
 
 
-def render_costs(clips: int, seconds: float, repeat: int) -> dict[str, float]:
+def render_costs(clips: int, seconds: float, repeat: int, profile: bool = False) -> dict[str, Any]:
     """Full render of every-clip-distinct, off-grid clips on 64 tracks against a memory pass, and
-    the evaluation floor: the same samples evaluated in batches, without per-clip work."""
+    the evaluation floor: the same samples evaluated in batches, without per-clip work; with
+    `profile`, its CPU per stage and the libm calls it needs (timeline.bench.render_profile)."""
     from timeline.bench.eval_floor import evaluation_work, run_all
     from timeline.bench.mixer_speed import fresh_render, memory_pass
     from timeline.bench.scenes import clip_samples
@@ -158,7 +160,36 @@ def render_costs(clips: int, seconds: float, repeat: int) -> dict[str, float]:
     works = evaluation_work(project, 0.0, seconds)
     run_all(works)  # soxr's and numba's first calls, not timed
     floor = best_cpu_time(lambda: run_all(works), repeat)
-    return {"clips": clips, "full": full, "pass": base, "evaluate": floor}
+    costs: dict[str, Any] = {"clips": clips, "full": full, "pass": base, "evaluate": floor}
+    if profile:
+        from timeline.bench.render_profile import libm_seconds, stage_seconds
+
+        costs["stages"] = stage_seconds(lambda: fresh_render(project, seconds))
+        costs["libm"], costs["libm_calls"] = libm_seconds(project, seconds)
+    return costs
+
+
+def profile_table(top: dict[str, Any]) -> Table:
+    """The largest render's CPU per stage, each as a ratio to the memory pass, and its floor."""
+    base, stages = top["pass"], top["stages"]
+    table = Table(f"Scale: where the full render of {top['clips']:,} distinct clips spends its CPU",
+                  ["stage", "CPU s", "/ memory pass"])  # fmt: skip
+    for name, spent in sorted(stages.items(), key=lambda kv: -kv[1]):
+        table.rows.append([name, spent, spent / base])
+    whole = sum(stages.values())
+    table.rows.append(["the profiled render", whole, whole / base])
+    fourier = stages.get("square: Fourier sum", 0.0)
+    floor = top["libm"] + fourier
+    table.notes += [
+        "each stage: the exclusive CPU of the functions doing it, timed inside one full render "
+        "(less the clock's own cost per call); bookkeeping: the rest of that render's CPU",
+        f"floor of any render with these bits: the {top['libm_calls']:,} sin/cos evaluations of "
+        f"the numpy forms, timed call by call, {top['libm']:.3f} s "
+        f"({1e9 * top['libm'] / max(1, top['libm_calls']):.1f} ns each, "
+        f"{top['libm'] / base:.2f}x the pass), plus the square's Fourier sum {fourier:.3f} s: "
+        f"{floor / base:.2f}x the memory pass",
+    ]
+    return table
 
 
 _FIRST_RENDER = """
@@ -195,7 +226,8 @@ def run(quick: bool, out: Path) -> list[Table]:
     repeat = 2 if quick else 3
     render_sizes = ((250, 15.0), (1_000, 30.0)) if quick else ((1_000, 60.0), (4_000, 150.0),
                                                                 (16_000, 600.0))  # fmt: skip
-    renders = [render_costs(n, s, 1 if n > 4_000 else repeat) for n, s in render_sizes]
+    renders = [render_costs(n, s, 1 if n > 4_000 else repeat, profile=(n, s) == render_sizes[-1])
+               for n, s in render_sizes]  # fmt: skip
     sizes = (500, 2_000) if quick else (1_000, 4_000, 16_000)
     builds = {n: edit_costs(n) for n in sizes}
     file_sizes = (1_000, 5_000) if quick else (10_000, 30_000, 100_000)
@@ -274,7 +306,7 @@ def run(quick: bool, out: Path) -> list[Table]:
         "bookkeeping: the rest of the full render (placing, per-clip calls, scaling, fades' "
         "multiply)",
     ]
-    tables = [render_table, edit_table, file_table, rec_table, start_table]
+    tables = [render_table, profile_table(top), edit_table, file_table, rec_table, start_table]
     if not quick:  # a cold numba cache compiles every loop: ~1 min, left out of --quick
         first = first_render_costs()
         first_table = Table("Scale: first render in a fresh process, 1,000 distinct clips (60 s)",

@@ -19,4 +19,5 @@ _LOADED = ("timeline.signal.render_kernels", "timeline.signal.shape_kernels")
 
 def compiled_wanted(n: int) -> bool:
     """True when an evaluation of n samples takes the compiled loops."""
-    return n >= COMPILED_SAMPLES or any(name in sys.modules for name in _LOADED)
+    modules = sys.modules
+    return n >= COMPILED_SAMPLES or _LOADED[0] in modules or _LOADED[1] in modules

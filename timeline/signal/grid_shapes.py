@@ -18,7 +18,7 @@ from timeline.signal.band_limit import HIGHEST_FREQUENCY, noise_level
 from timeline.signal.generators import TWO_PI
 
 _INDEX_LIMIT = 2.0**62  # |u * lattice| below this converts to int64 exactly
-_KINDS = ("am", "noise")  # generators with a loop (a sine's libm sin costs the same in one)
+_KINDS = ("sine", "chirp", "detents", "am", "noise", "adsr")  # generators with a loop
 
 
 def _ends(u0: float, du: float, n: int) -> tuple[float, float]:
@@ -45,9 +45,36 @@ def generator_on_grid(generator: str, params: Mapping[str, float], duration: flo
     p = params
     if generator == "noise":
         return _noise(k, p, duration, u0, du, out, nyquist, max(-lo, hi))
-    k.am(u0, du, out, duration, TWO_PI * p["carrier"], TWO_PI * p["modulation"], p["depth"],
-         1.0 + abs(p["depth"]), p["amplitude"])  # fmt: skip
+    if generator == "sine":
+        k.sine(u0, du, out, duration, TWO_PI * p["frequency"], p["phase"], p["amplitude"])
+    elif generator == "chirp":
+        if not _chirp(k, p, duration, u0, du, out):
+            return None
+    elif generator == "adsr":
+        k.adsr(u0, du, out, duration, p["attack"], p["decay"], p["sustain"], p["release"])
+    elif generator == "detents":
+        period = duration / p["count"]
+        k.detents(u0, du, out, duration, p["phase"] * period, period, -p["amplitude"])
+    else:
+        k.am(u0, du, out, duration, TWO_PI * p["carrier"], TWO_PI * p["modulation"], p["depth"],
+             1.0 + abs(p["depth"]), p["amplitude"])  # fmt: skip
     return out
+
+
+def _chirp(k, p: Mapping[str, float], duration: float, u0: float, du: float,
+           out: np.ndarray) -> bool:  # fmt: skip
+    """A chirp's loop, with the numpy form's constants (generators._chirp) worked out as it
+    works them out; False for an exponential chirp of one frequency (numpy's sin(2 pi f0 u)
+    keeps a -0.0 that the sine loop's + 0.0 phase would turn to +0.0)."""
+    f0, f1 = p["f0"], p["f1"]
+    if not p["exponential"]:
+        k.chirp(u0, du, out, duration, f0, 0.5 * (f1 - f0), p["amplitude"])
+    elif f0 != f1:
+        rate = float(np.log(f1 / f0) / duration)
+        k.exponential_chirp(u0, du, out, duration, TWO_PI * f0, rate, p["amplitude"])
+    else:
+        return False
+    return True
 
 
 def _noise(k, p: Mapping[str, float], duration: float, u0: float, du: float, out: np.ndarray,

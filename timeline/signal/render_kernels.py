@@ -52,6 +52,21 @@ def scaled_add(out: np.ndarray, x: np.ndarray, weight: float) -> None:
         out[i] += weight * x[i]
 
 
+_MAGNITUDE = 0x7FFFFFFFFFFFFFFF  # a float64's bits without its sign
+
+
+@njit(cache=True)
+def peak_bits(bits: np.ndarray) -> int:
+    """The bits of np.max(np.abs(x)) for x's float64 bits viewed as int64 (non-empty): without
+    the sign bit, a larger magnitude has larger bits, a nan larger than any (as numpy's max puts
+    it first), so one integer maximum in one pass (vectorised) gives it exactly."""
+    top = 0
+    for i in range(bits.shape[0]):
+        b = bits[i] & _MAGNITUDE
+        top = b if b > top else top
+    return top
+
+
 @njit(cache=True)
 def fourier_real(x: np.ndarray, re: np.ndarray, im: np.ndarray, odd: bool, out: np.ndarray) -> None:
     """out = Re(sum_k c_k z^k) for z = exp(2 pi i x), c listed highest k first (re, im; with

@@ -2,13 +2,14 @@
 
 Each loop builds the grid u = u0 + du*i itself, evaluates the shape, zeroes it outside the tile
 and writes the result once, where the numpy forms (timeline.signal.generators, splines, fades)
-make a temporary array per operation. Only kinds where that pays have a loop: AM, noise, splines
-and fades. A sine, chirp or detent series is one libm sin per sample, which costs the same in a
-loop (measured: 1.00-1.03x), so they keep numpy. Every loop performs the numpy form's operations
-in its order, each rounded on its own (numba neither reorders nor fuses a multiply-add without
-fastmath), and calls the same libm functions numpy calls for float64 (sin, cos, pow), so it
-gives numpy's bits: tests/core/test_shape_kernels.py holds each to np.array_equal against its
-numpy form. Loaded only where timeline.signal.compiled allows it.
+make a temporary array per operation: sine, chirp, detents, AM, noise, ADSR, splines and fades. A
+sine, chirp or detent series is one libm sin per sample either way (1.00-1.03x on a warm
+clip); in a render, where each clip's temporaries are fresh memory, its loop saves allocating
+and first touching them. Every loop performs the numpy
+form's operations in its order, each rounded on its own (numba neither reorders nor fuses a
+multiply-add without fastmath), and calls the same libm functions numpy calls for float64 (sin,
+cos, pow, expm1), so it gives numpy's bits: tests/core/test_shape_kernels.py holds each to
+np.array_equal against its numpy form. Loaded only where timeline.signal.compiled allows it.
 """
 
 from __future__ import annotations
@@ -41,6 +42,80 @@ def am(u0: float, du: float, out: np.ndarray, duration: float, omega_c: float, o
         else:
             envelope = (1.0 + depth * math.sin(omega_m * u)) / norm
             out[i] = amplitude * envelope * math.sin(omega_c * u)
+
+
+@njit(cache=True)
+def sine(u0: float, du: float, out: np.ndarray, duration: float, omega: float, phase: float,
+         amplitude: float) -> None:  # fmt: skip
+    """generators._sine: amplitude * sin(omega u + phase), omega = 2 pi frequency."""
+    for i in range(out.shape[0]):
+        u = _grid(u0, du, i)
+        if u < 0.0 or u > duration:
+            out[i] = 0.0
+        else:
+            out[i] = amplitude * math.sin(omega * u + phase)
+
+
+@njit(cache=True)
+def chirp(u0: float, du: float, out: np.ndarray, duration: float, f0: float, half_span: float,
+          amplitude: float) -> None:  # fmt: skip
+    """generators._chirp, linear: amplitude * sin(2 pi (f0 u + half_span u u / duration)),
+    half_span = 0.5 (f1 - f0)."""
+    for i in range(out.shape[0]):
+        u = _grid(u0, du, i)
+        if u < 0.0 or u > duration:
+            out[i] = 0.0
+        else:
+            out[i] = amplitude * math.sin(TWO_PI * (f0 * u + half_span * u * u / duration))
+
+
+@njit(cache=True)
+def exponential_chirp(u0: float, du: float, out: np.ndarray, duration: float, scale: float,
+                      rate: float, amplitude: float) -> None:  # fmt: skip
+    """generators._chirp, exponential (f0 != f1): amplitude * sin(scale expm1(rate u) / rate),
+    scale = 2 pi f0."""
+    for i in range(out.shape[0]):
+        u = _grid(u0, du, i)
+        if u < 0.0 or u > duration:
+            out[i] = 0.0
+        else:
+            out[i] = amplitude * math.sin(scale * math.expm1(rate * u) / rate)
+
+
+@njit(cache=True)
+def detents(u0: float, du: float, out: np.ndarray, duration: float, shift: float, period: float,
+            negated: float) -> None:  # fmt: skip
+    """generators._detents: negated * sin(2 pi (u - shift) / period), shift = phase * period,
+    negated = -amplitude."""
+    for i in range(out.shape[0]):
+        u = _grid(u0, du, i)
+        if u < 0.0 or u > duration:
+            out[i] = 0.0
+        else:
+            out[i] = negated * math.sin(TWO_PI * (u - shift) / period)
+
+
+@njit(cache=True)
+def adsr(u0: float, du: float, out: np.ndarray, duration: float, attack: float, decay: float,
+         sustain: float, release: float) -> None:  # fmt: skip
+    """generators._adsr: each sample takes the last of its phases that applies (attack, decay,
+    release over sustain), as the numpy form's masked assignments do one after another."""
+    decayed = attack + decay
+    release_start = duration - release
+    drop = 1.0 - sustain
+    for i in range(out.shape[0]):
+        u = _grid(u0, du, i)
+        v = sustain
+        if attack > 0.0 and u < attack:
+            v = u / attack
+        if decay > 0.0 and u >= attack and u < decayed:
+            v = 1.0 - drop * (u - attack) / decay
+        if release > 0.0 and u >= release_start:
+            x = (duration - u) / release
+            x = x if x > 0.0 else 0.0  # np.clip's order, as _fade_gain
+            x = x if x < 1.0 else 1.0
+            v = sustain * x
+        out[i] = 0.0 if u < 0.0 or u > duration else v
 
 
 @njit(cache=True)
