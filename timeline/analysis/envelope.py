@@ -4,6 +4,9 @@ The follower moves exponentially towards its input, reaching 99 % of a rise with
 seconds and 99 % of a fall within `release` seconds; after any rise it holds its level for `hold`
 seconds before it starts to fall, so short gaps in a sound do not chop the vibration. The loop
 runs per sample and carries its state between blocks, so a long sound is analysed in pieces.
+
+`expand_tail` then lets the envelope fall faster once it is far below the sound's peak (a
+downward expander, docs/convert.md "Tails"): designers cut the tails a hand hardly feels.
 """
 
 from __future__ import annotations
@@ -84,3 +87,13 @@ class EnvelopeFollower:
             rms, out, self.attack, self.release, self.hold, self.level, self.held
         )
         return out
+
+
+def expand_tail(values: np.ndarray, threshold: float, ratio: float) -> np.ndarray:
+    """Values below `threshold` fall `ratio` dB for each dB they are below it; others stay."""
+    if threshold <= 0.0 or ratio == 1.0:
+        return values
+    below = values < threshold
+    out = values.copy()
+    out[below] = threshold * (values[below] / threshold) ** ratio
+    return out

@@ -53,9 +53,10 @@ PLOTTED = ("Body1", "Glass1", "Wood1")
 FEWEST_FITTED = 5  # analysis-made breakpoints below which no gain is reported
 FIT_ERROR = 1e-3  # a fitted gain leaving more error than this is not a level (CameraShutter1)
 # Meta Haptics Studio's open analysis, as it is: its peak picking, every breakpoint its budget
-# keeps, its 50 % ducking (the evidence that Lofelt's analysis is this one uses it)
+# keeps, its 50 % ducking, no tail expansion (the evidence that Lofelt's analysis is this one
+# uses it)
 META = dataclasses.replace(
-    DEFAULTS, adaptive=False, peak_window=0.1, resolution=100.0, ducking=50.0
+    DEFAULTS, adaptive=False, peak_window=0.1, resolution=100.0, ducking=50.0, tail_ratio=1.0
 )
 
 
