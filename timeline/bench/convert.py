@@ -276,6 +276,12 @@ def agreement_table(out: Path) -> Table:
 SWEEP = {
     "Meta Haptics Studio's analysis": META,
     "defaults (sensitivity 50, resolution 50)": DEFAULTS,
+    "tail ratio 1 (no tail expansion: the defaults before)": dataclasses.replace(
+        DEFAULTS, tail_ratio=1.0
+    ),
+    "tail at 15 dB": dataclasses.replace(DEFAULTS, tail_db=15.0),
+    "tail at 25 dB": dataclasses.replace(DEFAULTS, tail_db=25.0),
+    "tail ratio 3": dataclasses.replace(DEFAULTS, tail_ratio=3.0),
     **{f"sensitivity {s}": dataclasses.replace(DEFAULTS, sensitivity=s) for s in (10, 25, 75, 100)},
     **{f"resolution {r}": dataclasses.replace(DEFAULTS, resolution=r) for r in (25, 75, 100)},
 }
