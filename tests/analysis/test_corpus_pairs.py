@@ -30,10 +30,11 @@ def test_agreement_with_lofelt_studio(audio_pairs: Path) -> None:
     mae = np.median([a.amplitude_mae for a in found.values()])
     f1 = np.mean([a.onset_f1 for a in found.values()])
     freq = np.mean([a.frequency_mae for a in found.values()])
-    assert r >= 0.948 and mae <= 0.069 and f1 >= 0.6 and freq <= 0.29
-    # the decaying impacts agree closely, envelope and onset
+    assert r >= 0.947 and mae <= 0.0675 and f1 >= 0.6 and freq <= 0.29
+    # the decaying impacts agree closely, envelope and onset (MAE 0.013 and 0.012 before their
+    # tails were expanded)
     for name in ("Body1", "Wood1"):
-        assert found[name].amplitude_r >= 0.99 and found[name].amplitude_mae <= 0.013
+        assert found[name].amplitude_r >= 0.99 and found[name].amplitude_mae <= 0.006
         assert found[name].onset_f1 == 1.0
 
 

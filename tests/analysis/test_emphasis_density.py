@@ -62,3 +62,19 @@ def test_sensitivity_spans_sparse_to_dense() -> None:
     assert per_second(100) >= 20.0
     densities = [per_second(s) for s in (1, 10, 25, 50, 100)]
     assert densities == sorted(densities) and 2 <= densities[1] <= 15  # smooth, not a switch
+
+
+@pytest.mark.parametrize("chunk", [7, 40, 300])
+def test_onsets_taken_chunk_by_chunk_are_those_of_the_whole(
+    chunk: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The onset statistics in chunks (bounded memory for hours of frames) give the same hits as
+    over all frames at once, whatever the chunk (smaller than the filters' reach, or larger)."""
+    from timeline.analysis import onsets
+
+    x, _ = click_train(20)
+    x[RATE // 2 :] += explosion()[0][: len(x) - RATE // 2]
+    whole = analyse(x, RATE).emphasis
+    assert len(whole) >= 20
+    monkeypatch.setattr(onsets, "CHUNK", chunk)
+    np.testing.assert_array_equal(analyse(x, RATE).emphasis, whole)

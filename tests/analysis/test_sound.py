@@ -46,7 +46,7 @@ def test_sensitivity_passes_the_strongest_flux() -> None:
 def test_release_falls_99_percent_in_its_time() -> None:
     x = np.zeros(RATE)
     x[: RATE // 4] = np.where(np.arange(RATE // 4) % 2, 1.0, -1.0)  # full-scale, then silence
-    s = AnalysisSettings(emphasis=False, hold=0.0, resolution=100)  # every point the budget keeps
+    s = AnalysisSettings(emphasis=False, hold=0.0, resolution=100, tail_ratio=1.0)  # all points
     a = analyse(x, RATE, s)
     assert value_at(a.amplitude, 0.2) == pytest.approx(1.0, abs=0.01)
     assert value_at(a.amplitude, 0.25 + s.release) == pytest.approx(0.01, abs=0.004)

@@ -4,6 +4,9 @@ The follower moves exponentially towards its input, reaching 99 % of a rise with
 seconds and 99 % of a fall within `release` seconds; after any rise it holds its level for `hold`
 seconds before it starts to fall, so short gaps in a sound do not chop the vibration. The loop
 runs per sample and carries its state between blocks, so a long sound is analysed in pieces.
+
+`expand_tail` then lets the envelope fall faster once it is far below the sound's peak (a
+downward expander, docs/convert.md "Tails"): designers cut the tails a hand hardly feels.
 """
 
 from __future__ import annotations
@@ -22,7 +25,8 @@ def _coefficient(seconds: float, rate: float) -> float:
 
 @njit(cache=True)
 def _follow(
-    rms: np.ndarray,
+    block: np.ndarray,
+    squares: np.ndarray,
     out: np.ndarray,
     attack: float,
     release: float,
@@ -30,18 +34,34 @@ def _follow(
     level: float,
     held: int,
 ) -> tuple[float, int]:
-    for i in range(rms.shape[0]):
-        x = rms[i]
-        if x > level:
-            level = attack * (level - x) + x
+    """The moving RMS of `block` over len(squares) samples (`squares`: the squares before it,
+    updated in place) fed to the follower, in one pass; returns the follower's state."""
+    w, n = squares.shape[0], block.shape[0]
+    sums = np.empty(w + n)  # running sums of the squares, the window's history first
+    total = 0.0
+    for j in range(w):
+        total += squares[j]
+        sums[j] = total
+    for i in range(n):
+        x = np.float64(block[i])
+        total += x * x
+        sums[w + i] = total
+        rms = np.sqrt(max(total - sums[i], 0.0) / w)
+        if rms > level:
+            level = attack * (level - rms) + rms
             held = 0
         elif held < hold:
             held += 1
         else:
-            level = release * (level - x) + x
+            level = release * (level - rms) + rms
         if level < 1e-30:
             level = 0.0
         out[i] = level
+    keep = min(w, n)
+    squares[: w - keep] = squares[keep:]
+    for j in range(keep):
+        x = np.float64(block[n - keep + j])
+        squares[w - keep + j] = x * x
     return level, held
 
 
@@ -74,13 +94,19 @@ class EnvelopeFollower:
 
     def process(self, block: np.ndarray) -> np.ndarray:
         """The envelope (float64) for the next samples of the sound."""
-        squares = np.concatenate([self.squares, np.square(block, dtype=np.float64)])
-        sums = np.cumsum(squares)
-        windowed = sums[self.window :] - sums[: -self.window]
-        rms = np.sqrt(np.maximum(windowed, 0.0) / self.window)
-        self.squares = squares[-self.window :]
-        out = np.empty_like(rms)
+        out = np.empty(len(block))
         self.level, self.held = _follow(
-            rms, out, self.attack, self.release, self.hold, self.level, self.held
-        )
+            np.ascontiguousarray(block), self.squares, out, self.attack, self.release,
+            self.hold, self.level, self.held,
+        )  # fmt: skip
         return out
+
+
+def expand_tail(values: np.ndarray, threshold: float, ratio: float) -> np.ndarray:
+    """Values below `threshold` fall `ratio` dB for each dB they are below it; others stay."""
+    if threshold <= 0.0 or ratio == 1.0:
+        return values
+    below = values < threshold
+    out = values.copy()
+    out[below] = threshold * (values[below] / threshold) ** ratio
+    return out

@@ -50,6 +50,7 @@ GATE_DB = -40.0  # least frame power after an onset, relative to the sound's lou
 RISE_SPAN = 0.02  # s: power compared this far before and after the onset frame
 SNAP_BEFORE = 0.005  # s: an emphasis goes on the highest breakpoint from this before the onset
 SNAP_AFTER = 0.02  # s: ... to this and half a spectrum frame after it
+CHUNK = 1 << 16  # frames whose onset statistics are taken at once (bounded working memory)
 
 
 @dataclass(frozen=True)
@@ -90,30 +91,75 @@ def _frames(seconds: float, times: np.ndarray) -> int:
 
 
 def onset_frames(frames: Frames, settings: AnalysisSettings) -> np.ndarray:
-    """Indices of the frames that hold an onset (the adaptive method, module docstring)."""
-    from scipy.ndimage import maximum_filter1d, median_filter
+    """Indices of the frames that hold an onset (the adaptive method, module docstring).
 
-    times = frames.times
-    strength = frames.features.strength.astype(np.float64)
+    The local statistics are taken CHUNK frames at a time, each chunk with the margin its
+    filters reach, so hours of frames need a chunk's worth of working memory (the result is
+    the same as over all frames at once)."""
+    times, strength = frames.times, frames.features.strength
     if len(strength) < 3 or settings.sensitivity <= 0 or float(strength.max()) <= 0:
         return np.empty(0, dtype=np.intp)
     strict = _sensitivity_scale(settings)
     spread = SPREAD[0] + strict * (SPREAD[1] - SPREAD[0])
-    floor = FLOOR[0] + strict * (FLOOR[1] - FLOOR[0])
-    context = 2 * _frames(CONTEXT, times) + 1
-    median = median_filter(strength, size=context, mode="nearest")
-    deviation = median_filter(np.abs(strength - median), size=context, mode="nearest")
-    threshold = np.maximum(median + spread * deviation, floor * float(strength.max()))
-    local = maximum_filter1d(strength, 2 * _frames(LOCAL_MAXIMUM, times) + 1, mode="nearest")
-    power = frames.features.power.astype(np.float64) + 1e-20
-    span = _frames(RISE_SPAN, times)
-    index = np.arange(len(power))
-    before = power[np.maximum(index - span, 0)]
+    floor = (FLOOR[0] + strict * (FLOOR[1] - FLOOR[0])) * float(strength.max())
+    sizes = _Sizes(
+        2 * _frames(CONTEXT, times) + 1, 2 * _frames(LOCAL_MAXIMUM, times) + 1,
+        _frames(RISE_SPAN, times),
+    )  # fmt: skip
+    gate = (float(frames.features.power.astype(np.float64).max()) + 1e-20) * 10.0 ** (
+        GATE_DB / 10.0
+    )
+    margin = 2 * sizes.context + sizes.local + 2 * sizes.span
+    found = [
+        start + _onsets_in(frames.features, lo, hi, start - lo, end - lo, spread, floor, gate,
+                           sizes)
+        for start in range(0, len(strength), CHUNK)
+        for end, lo, hi in [(min(start + CHUNK, len(strength)), max(0, start - margin),
+                             min(len(strength), start + CHUNK + margin))]
+    ]  # fmt: skip
+    index = np.concatenate(found)
+    score = strength[index].astype(np.float64)
+    return _spaced(index, score, times[index], hit_gap(settings))
+
+
+@dataclass(frozen=True)
+class _Sizes:
+    """Frames the onset statistics reach: the context's and local maximum's windows, the span
+    of the power's rise."""
+
+    context: int
+    local: int
+    span: int
+
+
+def _onsets_in(
+    features: Features,
+    lo: int,
+    hi: int,
+    first: int,
+    last: int,
+    spread: float,
+    floor: float,
+    gate: float,
+    sizes: _Sizes,
+) -> np.ndarray:
+    """The onsets among frames first..last of frames lo..hi (which hold the margins the filters
+    reach), counted from first."""
+    from scipy.ndimage import maximum_filter1d, median_filter
+
+    strength = features.strength[lo:hi].astype(np.float64)
+    median = median_filter(strength, size=sizes.context, mode="nearest")
+    deviation = median_filter(np.abs(strength - median), size=sizes.context, mode="nearest")
+    threshold = np.maximum(median + spread * deviation, floor)
+    local = maximum_filter1d(strength, sizes.local, mode="nearest")
+    power = features.power[lo:hi].astype(np.float64) + 1e-20
+    span = sizes.span
+    before = power[np.maximum(np.arange(len(power)) - span, 0)]
     after = maximum_filter1d(power, span + 1, origin=-(span // 2), mode="nearest")
     rises = 10.0 * np.log10(after / before) >= RISE_DB
-    rises &= after >= power.max() * 10.0 ** (GATE_DB / 10.0)
-    found = np.flatnonzero((strength >= local) & (strength > threshold) & rises)
-    return _spaced(found, strength[found], times[found], hit_gap(settings))
+    rises &= after >= gate
+    keep = (strength >= local) & (strength > threshold) & rises
+    return np.flatnonzero(keep[first:last])
 
 
 def hit_gap(settings: AnalysisSettings) -> float:
@@ -165,20 +211,19 @@ def emphasis(
     none = np.empty(0, dtype=np.intp), np.empty(0), np.empty(0)
     if not settings.emphasis or settings.sensitivity <= 0 or len(frames.times) == 0:
         return t, a, *none
-    flux = frames.features.flux.astype(np.float64)
     if settings.adaptive:
         onsets = frames.times[onset_frames(frames, settings)]
         if len(onsets) == 0:
             return t, a, *none
         half_frame = settings.fft_size / 2 / rate
         t, a, peaks = _snap(t, a, onsets, SNAP_AFTER + half_frame)
-        score = np.interp(t[peaks], frames.times, flux)
+        score = _flux_at(t[peaks], frames)
         lo, hi = float(score.min()), float(score.max())
     else:
         peaks = peak_indices(t, a, settings)
         if len(peaks) == 0:
             return t, a, *none
-        score = np.interp(t[peaks], frames.times, flux)
+        score = _flux_at(t[peaks], frames)
         lo, hi = float(score.min()), float(score.max())
         top = hi + (hi - lo) * 1e-3
         chosen = score >= top + settings.sensitivity / 100.0 * (lo - top)
@@ -192,6 +237,17 @@ def emphasis(
     amp = a[peaks].copy()
     a[peaks] *= 1.0 - settings.ducking / 100.0
     return t, a, peaks, amp, freq
+
+
+def _flux_at(when: np.ndarray, frames: Frames) -> np.ndarray:
+    """The spectral flux at times `when`, straight between frames (np.interp), reading only the
+    frames either side of each (no float64 copy of hours of frames)."""
+    times, flux = frames.times, frames.features.flux
+    if len(times) < 2:
+        return np.interp(when, times, flux.astype(np.float64))
+    j = np.clip(np.searchsorted(times, when, side="right"), 1, len(times) - 1)
+    near = np.unique(np.concatenate([j - 1, j]))
+    return np.interp(when, times[near], flux[near].astype(np.float64))
 
 
 def _undipped_after(

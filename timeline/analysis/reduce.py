@@ -13,8 +13,6 @@ keeps only the few points its shape needs. `max_error` measures the bound.
 
 from __future__ import annotations
 
-import heapq
-
 import numpy as np
 from numba import njit
 
@@ -36,6 +34,50 @@ def _error_without(t: np.ndarray, v: np.ndarray, left: int, right: int) -> float
 
 
 @njit(cache=True)
+def _before(keys: np.ndarray, links: np.ndarray, a: int, b: int) -> bool:
+    """Heap order of entries a and b: by area, then point, left and right (as tuples compare)."""
+    if keys[a] != keys[b]:
+        return keys[a] < keys[b]
+    for c in range(3):
+        if links[a, c] != links[b, c]:
+            return links[a, c] < links[b, c]
+    return False
+
+
+@njit(cache=True)
+def _push(heap: np.ndarray, size: int, keys: np.ndarray, links: np.ndarray, entry: int) -> int:
+    """Entry into the binary min-heap of `size` entries; the new size."""
+    i = size
+    heap[i] = entry
+    while i > 0:
+        parent = (i - 1) // 2
+        if not _before(keys, links, heap[i], heap[parent]):
+            break
+        heap[i], heap[parent] = heap[parent], heap[i]
+        i = parent
+    return size + 1
+
+
+@njit(cache=True)
+def _pop(heap: np.ndarray, size: int, keys: np.ndarray, links: np.ndarray) -> int:
+    """Take the heap's first entry to its end (heap[size - 1]); the caller shrinks the size."""
+    last = size - 1
+    heap[0], heap[last] = heap[last], heap[0]
+    i = 0
+    while True:
+        child = 2 * i + 1
+        if child >= last:
+            break
+        if child + 1 < last and _before(keys, links, heap[child + 1], heap[child]):
+            child += 1
+        if not _before(keys, links, heap[child], heap[i]):
+            break
+        heap[i], heap[child] = heap[child], heap[i]
+        i = child
+    return heap[last]
+
+
+@njit(cache=True)
 def _reduce_region(
     t: np.ndarray, v: np.ndarray, budget: int, minimum_score: float, tolerance: float, slack: float
 ) -> np.ndarray:
@@ -45,12 +87,24 @@ def _reduce_region(
         return keep
     prev = np.arange(-1, n - 1)
     nxt = np.arange(1, n + 1)
-    # heap of (area, point, left, right); an entry is stale once its point's neighbours change
-    heap = [(_area(t, v, i - 1, i, i + 1), i, i - 1, i + 1) for i in range(1, n - 1)]
-    heapq.heapify(heap)
+    # heap entries (area; point, left, right): at most the n - 2 first and two per removal;
+    # an entry is stale once its point's neighbours change
+    capacity = 3 * n
+    keys = np.empty(capacity)
+    links = np.empty((capacity, 3), dtype=np.int64)
+    heap = np.empty(capacity, dtype=np.int64)
+    entries = 0
+    size = 0
+    for i in range(1, n - 1):
+        keys[entries] = _area(t, v, i - 1, i, i + 1)
+        links[entries, 0], links[entries, 1], links[entries, 2] = i, i - 1, i + 1
+        size = _push(heap, size, keys, links, entries)
+        entries += 1
     count = n
-    while heap:
-        area, mid, left, right = heapq.heappop(heap)
+    while size > 0:
+        entry = _pop(heap, size, keys, links)
+        size -= 1
+        area, mid, left, right = keys[entry], links[entry, 0], links[entry, 1], links[entry, 2]
         if not keep[mid] or prev[mid] != left or nxt[mid] != right:
             continue
         if tolerance < 0 and count <= budget and area >= minimum_score:
@@ -66,7 +120,10 @@ def _reduce_region(
         prev[right] = left
         for m in (left, right):
             if 0 < m < n - 1:
-                heapq.heappush(heap, (_area(t, v, prev[m], m, nxt[m]), m, prev[m], nxt[m]))
+                keys[entries] = _area(t, v, prev[m], m, nxt[m])
+                links[entries, 0], links[entries, 1], links[entries, 2] = m, prev[m], nxt[m]
+                size = _push(heap, size, keys, links, entries)
+                entries += 1
     return keep
 
 

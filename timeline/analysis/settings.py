@@ -3,9 +3,10 @@
 Every field is a setting of `haptic-timeline convert` and of the editor's analysis panel. The
 envelope and spectrum defaults are those of Meta Haptics Studio's open analysis
 (facebook/meta-haptics-sdk, interfaces/studio/audio_analysis), so envelopes start where Studio's
-would. Four differ, each said in docs/convert.md: emphasis found adaptively (`adaptive`, with
+would. Five differ, each said in docs/convert.md: emphasis found adaptively (`adaptive`, with
 `peak_window` 30 ms; off with peak_window 0.1 s gives Studio's peak picking), `resolution` 50 %
-(100 %: Studio's breakpoint budget alone), and `ducking` 20 % (Lofelt Studio's; Meta's is 50 %).
+(100 %: Studio's breakpoint budget alone), `ducking` 20 % (Lofelt Studio's; Meta's is 50 %), and
+the envelope's tail below `tail_db` expanded by `tail_ratio` (`--tail-ratio 1`: Studio's).
 """
 
 from __future__ import annotations
@@ -33,6 +34,12 @@ class AnalysisSettings:
     hold: float = _setting(1.5e-3, "time the envelope holds a peak before it falls (s)")
     release: float = _setting(0.1, "time the envelope takes to fall 99 % of the way (s)")
     update: float = _setting(1e-3, "time between analysed amplitude points (s)")
+    tail_db: float = _setting(
+        20.0, "the envelope this far below the sound's peak starts to fall faster (dB)"
+    )
+    tail_ratio: float = _setting(
+        2.0, "how much faster the envelope falls below tail_db: 1 not at all, 2 twice (dB/dB)"
+    )
     normalize: bool = _setting(False, "scale the sound so its peak is level_db first")
     level_db: float = _setting(0.0, "peak level after normalising (dBFS)")
     gain_db: float = _setting(0.0, "gain applied to the sound when not normalising (dB)")
@@ -81,6 +88,8 @@ class AnalysisSettings:
         for name in ("rms_window", "attack", "hold", "release", "peak_window", "minimum_rise"):
             if getattr(self, name) < 0:
                 raise SettingsError(f"the analysis setting {name} must not be negative")
+        if self.tail_db < 0 or self.tail_ratio < 1:
+            raise SettingsError("tail_db must not be negative and tail_ratio must be at least 1")
         if self.update <= 0:
             raise SettingsError("the analysis setting update must be above zero")
         if self.fft_size < 16 or self.fft_size & (self.fft_size - 1):

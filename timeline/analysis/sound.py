@@ -1,10 +1,11 @@
 """A sound in, envelopes out: the analysis pipeline, run block by block in bounded memory.
 
 The sound (mixed to mono) has its DC offset removed and is normalised (or given a gain); the
-amplitude envelope is sampled every `update` seconds from the follower (envelope.py) and reduced
-(reduce.py); the frequency envelope is the mapped spectral centroid of each frame (spectrum.py),
-reduced the same way; emphasis is picked from the reduced amplitude envelope (onsets.py). Both
-envelopes start at 0 s and end together at the end of the sound.
+amplitude envelope is sampled every `update` seconds from the follower (envelope.py), its tail
+below `tail_db` under the sound's peak expanded, and reduced (reduce.py); the frequency envelope
+is the mapped spectral centroid of each frame (spectrum.py), reduced the same way; emphasis is
+picked from the reduced amplitude envelope (onsets.py). Both envelopes start at 0 s and end
+together at the end of the sound.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from timeline.analysis.envelope import EnvelopeFollower
+from timeline.analysis.envelope import EnvelopeFollower, expand_tail
 from timeline.analysis.onsets import Frames, emphasis
 from timeline.analysis.reduce import RegionReducer
 from timeline.analysis.settings import DEFAULTS, AnalysisSettings
@@ -120,6 +121,12 @@ def analyse_blocks(
     )
     spectrum = SpectrumFrames.create(rate, settings, level.peak * level.gain)
     events = _AmplitudeEvents(rate, settings.update, length)
+    tail = level.peak * level.gain * 10.0 ** (-settings.tail_db / 20.0)
+
+    def envelope(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        times, values = events.take(follower.process(x))
+        return times, expand_tail(values, tail, settings.tail_ratio)
+
     # the resolution's error is relative to the sound's peak: a quiet sound keeps its shape too
     amp = RegionReducer(
         settings.amplitude_points_per_second, settings.minimum_score, settings.tolerance,
@@ -144,15 +151,15 @@ def analyse_blocks(
         if not np.all(np.isfinite(x)):
             raise AnalysisError("the sound holds samples that are not finite numbers")
         fed += len(x)
-        amp.add(*events.take(follower.process(x)))
+        amp.add(*envelope(x))
         spectral(*spectrum.process(x))
         if progress is not None:
             progress(min(fed / length, 1.0))
     if fed != length:
         raise AnalysisError(f"the sound ended after {fed} of its {length} samples")
-    tail = np.zeros(max(0, events.needed - length))
-    if len(tail):
-        amp.add(*events.take(follower.process(tail)))
+    rest = np.zeros(max(0, events.needed - length))
+    if len(rest):
+        amp.add(*envelope(rest))
     spectral(*spectrum.finish())
     frames = Frames(np.concatenate(frame_t), Features.join(frame_f))
     return _assemble(amp.finish(), freq.finish(), frames, length / rate, rate, level, settings)

@@ -19,7 +19,6 @@ from typing import cast
 import numpy as np
 import scipy.fft
 from numba import njit
-from numpy.lib.stride_tricks import sliding_window_view
 
 from timeline.analysis.settings import AnalysisSettings
 
@@ -31,20 +30,36 @@ COMPRESSION = 1.0  # C in log(1 + C * magnitude / peak) of the onset strength
 BAND = 8  # bins summed into one band of the onset strength (a log per band, not per bin)
 
 
+@njit(cache=True)
+def _windowed(data: np.ndarray, ends: np.ndarray, window: np.ndarray) -> np.ndarray:
+    """The frames data[e : e + len(window)] for each e in ends, times the window."""
+    size = window.shape[0]
+    frames = np.empty((ends.shape[0], size), dtype=data.dtype)
+    for j in range(ends.shape[0]):
+        e = ends[j]
+        for k in range(size):
+            frames[j, k] = data[e + k] * window[k]
+    return frames
+
+
 @njit(cache=True, fastmath=True)
 def _features(
-    magnitudes: np.ndarray, half: int, lowpass: int, compression: float, previous: np.ndarray
+    spectra: np.ndarray, half: int, lowpass: int, compression: float, previous: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Per frame: flux (summed magnitude rise), onset strength (summed rise of the log of each
-    BAND bins' magnitude), power (summed squared magnitude), and the magnitude sum and
-    bin-weighted sum below `lowpass`; `previous` (the last frame's magnitudes, then its bands'
-    logs) is updated in place. Loops without branches, so they compile to vector code."""
-    n = magnitudes.shape[0]
+    """Per frame of complex spectra: flux (summed magnitude rise), onset strength (summed rise
+    of the log of each BAND bins' magnitude), power (summed squared magnitude), and the
+    magnitude sum and bin-weighted sum below `lowpass`; `previous` (the last frame's
+    magnitudes, then its bands' logs) is updated in place. Loops without branches, so they
+    compile to vector code."""
+    n = spectra.shape[0]
     bands = (half + BAND - 1) // BAND
     flux, strength, power = np.zeros(n), np.zeros(n), np.zeros(n)
     energy, weighted = np.zeros(n), np.zeros(n)
+    row = np.empty(half, dtype=previous.dtype)
     for j in range(n):
-        row = magnitudes[j]
+        for k in range(half):
+            c = spectra[j, k]
+            row[k] = np.sqrt(c.real * c.real + c.imag * c.imag)
         rise = 0.0
         squares = 0.0
         for k in range(half):
@@ -128,15 +143,14 @@ class SpectrumFrames:
         if len(ends) == 0:
             self.seen += len(block)
             return np.empty(0), np.empty(0), Features.empty()
-        frames = sliding_window_view(data, self.size)[ends]  # frame j covers data[e : e + size]
+        frames = _windowed(data, ends, self.window)  # frame j covers data[e : e + size]
         times = (self.seen + ends - self.size / 2.0) / self.rate
         self.seen += len(block)
         half = self.size // 2
-        frames *= self.window  # the fancy index made a copy: windowed in place
         # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array it returns
         spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1, overwrite_x=True))
         flux, strength, power, energy, weighted = _features(
-            np.abs(spectra), half, self.lowpass_bin, self.compression, self.previous
+            spectra, half, self.lowpass_bin, self.compression, self.previous
         )
         loud = energy >= QUIET_BIN_MAGNITUDE * (self.lowpass_bin - 1)
         centroid = np.where(loud, weighted / np.maximum(energy, 1e-300) / half, 0.0)

@@ -53,9 +53,10 @@ PLOTTED = ("Body1", "Glass1", "Wood1")
 FEWEST_FITTED = 5  # analysis-made breakpoints below which no gain is reported
 FIT_ERROR = 1e-3  # a fitted gain leaving more error than this is not a level (CameraShutter1)
 # Meta Haptics Studio's open analysis, as it is: its peak picking, every breakpoint its budget
-# keeps, its 50 % ducking (the evidence that Lofelt's analysis is this one uses it)
+# keeps, its 50 % ducking, no tail expansion (the evidence that Lofelt's analysis is this one
+# uses it)
 META = dataclasses.replace(
-    DEFAULTS, adaptive=False, peak_window=0.1, resolution=100.0, ducking=50.0
+    DEFAULTS, adaptive=False, peak_window=0.1, resolution=100.0, ducking=50.0, tail_ratio=1.0
 )
 
 
@@ -275,6 +276,12 @@ def agreement_table(out: Path) -> Table:
 SWEEP = {
     "Meta Haptics Studio's analysis": META,
     "defaults (sensitivity 50, resolution 50)": DEFAULTS,
+    "tail ratio 1 (no tail expansion: the defaults before)": dataclasses.replace(
+        DEFAULTS, tail_ratio=1.0
+    ),
+    "tail at 15 dB": dataclasses.replace(DEFAULTS, tail_db=15.0),
+    "tail at 25 dB": dataclasses.replace(DEFAULTS, tail_db=25.0),
+    "tail ratio 3": dataclasses.replace(DEFAULTS, tail_ratio=3.0),
     **{f"sensitivity {s}": dataclasses.replace(DEFAULTS, sensitivity=s) for s in (10, 25, 75, 100)},
     **{f"resolution {r}": dataclasses.replace(DEFAULTS, resolution=r) for r in (25, 75, 100)},
 }

@@ -62,7 +62,8 @@ RANGES = {
     "tolerance": (0.0, 1.0, 3), "resolution": (0.0, 100.0, 0), "sensitivity": (0.0, 100.0, 0),
     "peak_window": (0.0, 2.0, 3),
     "minimum_rise": (0.0, 1.0, 2), "plateau": (0.0, 100.0, 0), "sharpness_min": (0.0, 1.0, 2),
-    "sharpness_max": (0.0, 1.0, 2), "ducking": (0.0, 100.0, 0),
+    "sharpness_max": (0.0, 1.0, 2), "ducking": (0.0, 100.0, 0), "tail_db": (0.0, 120.0, 1),
+    "tail_ratio": (1.0, 100.0, 1),
 }  # fmt: skip
 INT_RANGES = {
     "fft_size": (16, 65536),
@@ -85,7 +86,7 @@ LABELS = {
     "adaptive": "Adaptive emphasis", "sensitivity": "Sensitivity (%)",
     "peak_window": "Peak window (s)", "minimum_rise": "Minimum rise", "plateau": "Plateau (%)",
     "sharpness_min": "Softest hit frequency", "sharpness_max": "Sharpest hit frequency",
-    "ducking": "Ducking (%)",
+    "ducking": "Ducking (%)", "tail_db": "Tail below (dB)", "tail_ratio": "Tail ratio",
 }  # fmt: skip
 
 
@@ -206,7 +207,7 @@ class AnalysisPanel(QWidget):
 
 
 class _SettingsDock(QDockWidget):
-    """A dock that builds its widget the first time it is shown (the analysis panel's 27 fields
+    """A dock that builds its widget the first time it is shown (the analysis panel's 29 fields
     cost ~15 ms, kept off the editor's launch while the dock is hidden)."""
 
     def __init__(self, title: str, parent: QWidget, build: Callable[[], object]) -> None:
