@@ -1,10 +1,13 @@
-"""Time projects played on the simulated knob from a process of its own (Qt-free).
+"""Time projects played on the sim and the USB knob from a process of its own (Qt-free).
 
 In the editor's process the stream's renderer and the hand-over of blocks share the interpreter
 lock with the GUI thread, and a C++ call made from Python there (a scene update, a paint) holds
 it for 0.1-1.4 s at high load: blocks go out late. Here a child process (spawn) opens the device,
 owns a Mixer and the LiveStream, and runs `device.play(stream, hand)`; nothing the editor's
-threads do can delay a block. The host sends it project versions as the designer edits, and gets
+threads do can delay a block. The USB knob is opened only here (its transfers run in the stream
+process it starts, device.usb.process): the editor's process never holds the device, so a failed
+child or editor ends in the stream process's STOP, or the knob's watchdog ramp, never in torque
+held. The host sends it project versions as the designer edits, and gets
 back telemetry, where the stream is, its late-block counts and the play's ending.
 
 A project crosses the pipe as a delta against the last one sent (`delta`, `rebuild`): the tracks
@@ -12,9 +15,9 @@ and tiles whose objects changed (the model is immutable, so an unchanged part is
 object), and the ids of the rest. Only what the mixer reads crosses (axis, rate, tracks, tiles).
 
 Messages, host to child: ("warm", delta, start), ("play", delta, start, stop, loop, tracks, hand,
-asked), ("edit", delta, version), ("stop",), ("close",). Child to host: ("ready",) or ("error",
-sentence) once opened; while playing ("part", LiveTelemetry), ("at", position, live version,
-Lateness), then ("done", sentence or "", Lateness).
+asked), ("edit", delta, version), ("stop",), ("close",). Child to host: ("ready", DeviceInfo) or
+("error", sentence) once opened; while playing ("part", LiveTelemetry), ("at", position, live
+version, Lateness), then ("done", sentence or "", Lateness).
 """
 
 from __future__ import annotations
@@ -32,9 +35,15 @@ from typing import Any
 
 from immutables import Map
 
-from timeline.errors import HapticTimelineError
+from timeline.errors import DeviceError, HapticTimelineError
 from timeline.model import Project, Track
-from timeline.plugins.device_protocol import Hand, LiveTelemetry, open_device
+from timeline.plugins.device_protocol import (
+    Device,
+    DeviceInfo,
+    Hand,
+    LiveTelemetry,
+    open_device,
+)
 from timeline.plugins.device_protocol.child_process import end_child
 from timeline.rendering.mixer import Mixer
 
@@ -105,9 +114,9 @@ class PlayProcess:
         self._warmed, child_warmed = context.Pipe(duplex=False)
         self._from_child = context.Queue()  # the child's puts never block on a stalled host
         self.process = context.Process(
-            target=serve, args=(child_in, self._from_child, child_warmed, device_name), daemon=True,
-            name="play process",
-        )  # fmt: skip
+            target=serve, args=(child_in, self._from_child, child_warmed, device_name),
+            daemon=False, name="play process",
+        )  # fmt: skip  # not daemonic: the USB knob's stream process is its child; `close` ends it
         self.process.start()
         child_in.close()
         child_warmed.close()
@@ -123,6 +132,7 @@ class PlayProcess:
         if message[0] == "error":
             self.close()
             raise HapticTimelineError(message[1])
+        self.info: DeviceInfo = message[1]  # what the device declared as it opened
 
     @property
     def alive(self) -> bool:
@@ -182,6 +192,25 @@ class PlayProcess:
         self._from_child.cancel_join_thread()
 
 
+class ChildDevice(Device):
+    """The editor's handle on a device only the play process opens (the USB knob: one owner of
+    the hardware): what it declared, and no play of its own here."""
+
+    def __init__(self, process: PlayProcess) -> None:
+        self.process = process
+
+    @property
+    def info(self) -> DeviceInfo:
+        return self.process.info
+
+    def play(self, program: Any, hand: Any = None, progress: Any = None, monitor: Any = None):
+        """Refused: this device plays time projects, from the play process only."""
+        raise DeviceError(
+            f"the {self.process.device_name} device plays time-mode projects, from the editor's "
+            "play process; play a position-mode project on the sim device"
+        )
+
+
 def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) -> None:
     """The child: open and warm the device, then play, edit and stop as the host asks."""
     sys.setswitchinterval(SWITCH_SECONDS)
@@ -191,7 +220,10 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
     except HapticTimelineError as exc:
         outbox.put(("error", str(exc)))
         return
-    outbox.put(("ready",))
+    except Exception as exc:  # noqa: BLE001 - the host must hear why, not wait for a timeout
+        outbox.put(("error", unexpected("Opening the device", exc)))
+        return
+    outbox.put(("ready", device.info))
     mixer = Mixer(cache_bytes=256 * 2**20)
     project: Project | None = None
     play: _Play | None = None

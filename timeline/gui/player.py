@@ -13,8 +13,10 @@ window has painted, `warm_up` loads the device's compiled code and renders the f
 ahead on a background thread, so the first block goes out within a few ms of Play; when the
 window's project is replaced (open, new, recover), `project_replaced` warms up on the new one.
 
-A time project on the simulated knob plays from a process of its own (play_process), one for
-the editor's process, so the GUI's hold on the interpreter lock cannot delay a block: `stream` is
+A time project on the sim or the USB knob plays from a process of its own (play_process), one
+for the editor's process, so the GUI's hold on the interpreter lock cannot delay a block. The USB
+knob is opened there only (`device` is then a ChildDevice: its declared info), so the hardware
+has one owner, and a Play waits for a hand-over in flight instead of playing here: `stream` is
 then the play's mirror here (its project versions, and where the child's stream is), and edits
 cross to the child as deltas of the tracks and tiles that changed. The warm-up thread is what
 hands the child a whole project (4.2 MB, 0.87 s at 20,000 clips at load 7), so a Play sends
@@ -45,7 +47,7 @@ from timeline.rendering.sound_out import SoundOut
 
 from .job_errors import unexpected
 from .live_stream import CHUNK_SECONDS, LiveStream, LiveTables
-from .play_process import PlayProcess
+from .play_process import ChildDevice, PlayProcess
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
 LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this often
@@ -53,7 +55,10 @@ LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this o
 # long instead of CPython's 5 ms, so the playing thread, which needs it for a moment every
 # 10 ms block, waits less for it.
 SWITCH_SECONDS = 0.001
-OWN_PROCESS = ("sim",)  # devices whose time plays run in the play process
+OWN_PROCESS = ("sim", "usb")  # devices whose time plays run in the play process
+# Devices opened in the play process only (ChildDevice here): the USB knob, whose hardware has one
+# owner, and whose blocks must not depend on this process's interpreter lock.
+CHILD_ONLY = ("usb",)
 STOP_SECONDS = 2.0  # a stop waits this long for the device to finish its block
 HANDOVER_WAIT = 0.005  # a Play waits this long (GUI thread) for the warm-up's hand-over
 
@@ -174,7 +179,11 @@ class Player(QObject):
     def _open(self) -> Device:
         with self._opening:
             if self.device is None:
-                self.device = self._opened = open_device(self.device_name)
+                if self.device_name in CHILD_ONLY:
+                    opened: Device = ChildDevice(_Shared.get(self.device_name))
+                else:
+                    opened = open_device(self.device_name)
+                self.device = self._opened = opened
             return self.device
 
     def _own_process(self, device: Device, project: Project) -> bool:
@@ -295,7 +304,9 @@ class Player(QObject):
                 )  # fmt: skip
                 self.stream.on_block = self._at
                 program, hand = self.stream, self.hand
-                if self._own_process(device, project) and self._handed.wait(HANDOVER_WAIT):
+                if self._own_process(device, project) and self._handed.wait(
+                    None if self.device_name in CHILD_ONLY else HANDOVER_WAIT
+                ):  # a device the child alone holds waits for the hand-over, however long
                     self._play_there(project, start, stop, loop, tracks, asked)
         except HapticTimelineError as exc:
             self.finished.emit(str(exc))
