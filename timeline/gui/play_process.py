@@ -44,7 +44,7 @@ from timeline.plugins.device_protocol import (
     LiveTelemetry,
     open_device,
 )
-from timeline.plugins.device_protocol.child_process import end_child
+from timeline.plugins.device_protocol.child_process import end_child, prefer_real_time
 from timeline.rendering.mixer import Mixer
 
 from .job_errors import unexpected
@@ -312,6 +312,7 @@ class _Play:
             self.outbox.put(("part", part))
 
     def _run(self, device: Any, hand: Hand) -> None:
+        prefer_real_time()  # this thread and the chunk-ahead worker it starts, where permitted
         try:
             device.play(self.stream, hand, monitor=self._part)
             outcome = ""
