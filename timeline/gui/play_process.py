@@ -27,6 +27,7 @@ import multiprocessing
 import queue
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterable
 from contextlib import suppress
 from dataclasses import dataclass
@@ -38,17 +39,23 @@ from immutables import Map
 from timeline.errors import DeviceError, HapticTimelineError
 from timeline.model import Project, Track
 from timeline.plugins.device_protocol import (
+    CoefficientBlock,
     Device,
     DeviceInfo,
     Hand,
+    Lateness,
     LiveTelemetry,
     open_device,
 )
-from timeline.plugins.device_protocol.child_process import end_child, prefer_real_time
+from timeline.plugins.device_protocol.child_process import (
+    end_child,
+    ordinary,
+    prefer_real_time,
+)
 from timeline.rendering.mixer import Mixer
 
 from .job_errors import unexpected
-from .live_stream import CHUNK_SECONDS, LiveStream
+from .live_stream import CHUNK_SECONDS, LiveStream, StreamState
 
 START_SECONDS = 60.0  # a child that has not opened the device by then is not coming
 # The playing thread needs the lock for a moment every 10 ms block; the chunk-ahead worker's
@@ -192,6 +199,57 @@ class PlayProcess:
         self._from_child.cancel_join_thread()
 
 
+@dataclass
+class HeardMeter:
+    """A play process's late-block counts as it last sent them (read as a LatenessMeter is)."""
+
+    heard: Lateness
+
+    def counts(self) -> Lateness:
+        return self.heard
+
+
+class RemoteStream:
+    """The editor's handle on a stream playing in the play process, its one record there: what
+    it plays (start, stop, rate), the newest project version, and where the child's stream is
+    and its late-block counts as the child last said (`heard`). `set_project` sends the edit."""
+
+    def __init__(
+        self,
+        process: PlayProcess,
+        project: Project,
+        rate: float,
+        start: float,
+        stop: float,
+        tracks: Iterable[str] | None,
+        lead: float,
+    ) -> None:
+        self.process, self.rate, self.start, self.stop = process, rate, start, stop
+        self.tracks = None if tracks is None else list(tracks)
+        self.state = StreamState(position=start)
+        self.lateness = HeardMeter(Lateness(lead=lead))
+        self._project = project
+
+    def heard(self, position: float, live_version: int, counts: Lateness) -> None:
+        """What the child said of its stream: where it is, the version it plays, its counts."""
+        state = self.state
+        state.position = position
+        if state.live_version != live_version:
+            state.live_version, state.live_at = live_version, time.perf_counter()
+        self.lateness.heard = counts
+
+    def set_project(self, project: Project) -> int:
+        """Send the child a new project state to play from its next block; its version."""
+        self._project = project
+        self.state.version += 1
+        self.process.send("edit", project, self.state.version)
+        return self.state.version
+
+    def render(self, project: Project, t0: float, t1: float) -> CoefficientBlock:
+        """The coefficients the child renders for `project` on [t0, t1), rendered here."""
+        return LiveStream(project, self.rate, t0, t1, tracks=self.tracks).render(project, t0, t1)
+
+
 class ChildDevice(Device):
     """The editor's handle on a device only the play process opens (the USB knob: one owner of
     the hardware): what it declared, and no play of its own here."""
@@ -223,6 +281,10 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
     except Exception as exc:  # noqa: BLE001 - the host must hear why, not wait for a timeout
         outbox.put(("error", unexpected("Opening the device", exc)))
         return
+    # From here this thread, and every thread it starts (the queue's feeder, each play's, their
+    # chunk-ahead workers), run ahead of ordinary programs where permitted: an ordinary one
+    # holding the interpreter lock when preempted would make the playing thread wait with it.
+    prefer_real_time()
     outbox.put(("ready", device.info))
     mixer = Mixer(cache_bytes=256 * 2**20)
     project: Project | None = None
@@ -235,7 +297,8 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
                 gc.freeze()  # the project's objects: no collection need walk them while playing
             if kind == "warm" and project is not None:
                 if play is None or not play.thread.is_alive():  # else the mixer is the play's
-                    warm_up(device.info.rate, mixer, project, args[1])
+                    with ordinary():  # seconds of renders at 20,000 clips
+                        warm_up(device.info.rate, mixer, project, args[1])
                 warmed.send(True)
             elif kind == "play" and project is not None:
                 if play is not None:
@@ -312,7 +375,6 @@ class _Play:
             self.outbox.put(("part", part))
 
     def _run(self, device: Any, hand: Hand) -> None:
-        prefer_real_time()  # this thread and the chunk-ahead worker it starts, where permitted
         try:
             device.play(self.stream, hand, monitor=self._part)
             outcome = ""

@@ -4,7 +4,8 @@ ending it, and asking the OS to run its playing thread ahead of ordinary program
 from __future__ import annotations
 
 import os
-from contextlib import suppress
+from collections.abc import Iterator
+from contextlib import contextmanager, suppress
 from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
 
@@ -47,3 +48,24 @@ def prefer_real_time() -> str:
         os.setpriority(os.PRIO_PROCESS, 0, NICE)
         return f"nice {NICE}"
     return ""
+
+
+@contextmanager
+def ordinary() -> Iterator[None]:
+    """Run the calling thread at the ordinary priority inside the block (long CPU work, such as
+    a warm-up's renders, that must not take a core from the designer's programs), then at the
+    one it had."""
+    if not hasattr(os, "sched_getscheduler"):
+        yield
+        return
+    policy, param = os.sched_getscheduler(0), os.sched_getparam(0)
+    nice = os.getpriority(os.PRIO_PROCESS, 0)
+    with suppress(OSError):
+        os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0))
+        os.setpriority(os.PRIO_PROCESS, 0, max(nice, 0))
+    try:
+        yield
+    finally:
+        with suppress(OSError):
+            os.setpriority(os.PRIO_PROCESS, 0, nice)
+            os.sched_setscheduler(0, policy, param)
