@@ -58,6 +58,7 @@ from .job_errors import unexpected
 from .live_stream import CHUNK_SECONDS, LiveStream, StreamState
 
 START_SECONDS = 60.0  # a child that has not opened the device by then is not coming
+END_SECONDS = 30.0  # a play not ended this long after its stop is stuck (USB transfers time out)
 # The playing thread needs the lock for a moment every 10 ms block; the chunk-ahead worker's
 # render (Python bookkeeping between numpy calls) hands it over after this long, not 5 ms.
 SWITCH_SECONDS = 0.001
@@ -131,6 +132,7 @@ class PlayProcess:
         self._sending = threading.Lock()  # one delta at a time against `_sent`
         self._warming = threading.Lock()  # one warm-up at a time waits for its answer
         self._sent: Project | None = None  # the project the child holds
+        self._plays = self._done = 0  # plays asked for, and "done"s heard
         try:
             message = self._from_child.get(timeout=START_SECONDS)
         except queue.Empty:
@@ -149,6 +151,7 @@ class PlayProcess:
         """Send a message carrying `project` as a delta against the last one sent."""
         with self._sending:
             change = delta(self._sent, project)
+            self._plays += kind == "play"
             try:
                 self._to_child.send((kind, change, *args))
             except OSError:
@@ -171,26 +174,38 @@ class PlayProcess:
         with suppress(OSError, ValueError):
             self._to_child.send(("stop",))
 
+    def _newest(self, message: tuple) -> bool:
+        """Whether `message` is the newest play's: a play's messages all come before its
+        "done", and the next play's after it, so those of a play the host stopped waiting for
+        (the USB knob plays out its queue first) are told by counting the "done"s."""
+        newest = self._done >= self._plays - 1
+        self._done += message[0] == "done"
+        return newest
+
     def take(self) -> list[tuple]:
-        """The messages the child has sent so far."""
+        """The newest play's messages the child has sent so far."""
         out = []
         while True:
             try:
-                out.append(self._from_child.get_nowait())
+                message = self._from_child.get_nowait()
             except (queue.Empty, OSError, ValueError):
                 return out
+            if self._newest(message):
+                out.append(message)
 
     def wait_done(self, timeout: float) -> list[tuple]:
-        """The messages up to the play's ("done", ...), waiting at most `timeout` s for it."""
+        """The newest play's messages up to its ("done", ...), waiting at most `timeout` s."""
         out = []
+        end = time.perf_counter() + timeout
         while True:
             try:
-                message = self._from_child.get(timeout=timeout)
+                message = self._from_child.get(timeout=max(0.0, end - time.perf_counter()))
             except (queue.Empty, OSError, ValueError):
                 return out
-            out.append(message)
-            if message[0] == "done":
-                return out
+            if self._newest(message):
+                out.append(message)
+                if message[0] == "done":
+                    return out
 
     def close(self) -> None:
         """Ask the child to go; make sure it went."""
@@ -318,6 +333,7 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
         if play is not None:
             play.end()
         device.close()
+        outbox.cancel_join_thread()  # a host gone need not read what is left: exit anyway
 
 
 def warm_up(rate: float, mixer: Mixer, project: Project, start: float) -> None:
@@ -385,6 +401,7 @@ class _Play:
         self.outbox.put(("done", outcome, self.stream.lateness.counts()))
 
     def end(self) -> None:
-        """Stop the stream after its block; the thread says it is done."""
+        """Stop the stream after its block and wait until the thread has said it is done, so
+        the next play's messages follow this one's "done" (the host counts on that)."""
         self.stream.stop_stream()
-        self.thread.join(timeout=2.0)
+        self.thread.join(timeout=END_SECONDS)
