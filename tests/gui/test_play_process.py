@@ -111,9 +111,10 @@ def test_the_first_play_after_the_hand_over_plays_the_in_process_render_bit_for_
 def test_a_stopped_plays_late_messages_are_not_taken_for_the_next_plays():
     process = PlayProcess.__new__(PlayProcess)  # the host's bookkeeping only, no child
     process._from_child = queue.Queue()
-    process._plays, process._done = 2, 0  # the host stopped waiting for the first play's end
+    process._plays = 2  # the host stopped waiting for the first play's end
     first = [("at", 0.5, 0, "first"), ("done", "", "first")]
     second = [("at", 0.0, 0, "second"), ("done", "", "second")]
-    for message in first + second:
-        process._from_child.put(message)
+    for number, messages in ((1, first), (2, second)):
+        for message in messages:
+            process._from_child.put((number, *message))
     assert process.wait_done(1.0) == second

@@ -15,9 +15,10 @@ and tiles whose objects changed (the model is immutable, so an unchanged part is
 object), and the ids of the rest. Only what the mixer reads crosses (axis, rate, tracks, tiles).
 
 Messages, host to child: ("warm", delta, start), ("play", delta, start, stop, loop, tracks, hand,
-asked), ("edit", delta, version), ("stop",), ("close",). Child to host: ("ready", DeviceInfo) or
-("error", sentence) once opened; while playing ("part", LiveTelemetry), ("at", position, live
-version, Lateness), then ("done", sentence or "", Lateness).
+asked, number), ("edit", delta, version), ("stop",), ("close",). Child to host, each message
+after the number of the play it belongs to (0 before any): ("ready", DeviceInfo) or ("error",
+sentence) once opened; while playing ("part", LiveTelemetry), ("at", position, live version,
+Lateness), then ("done", sentence or "", Lateness). The host takes the newest play's only.
 """
 
 from __future__ import annotations
@@ -132,16 +133,17 @@ class PlayProcess:
         self._sending = threading.Lock()  # one delta at a time against `_sent`
         self._warming = threading.Lock()  # one warm-up at a time waits for its answer
         self._sent: Project | None = None  # the project the child holds
-        self._plays = self._done = 0  # plays asked for, and "done"s heard
+        self._plays = 0  # plays asked for: the newest one's number
         try:
             message = self._from_child.get(timeout=START_SECONDS)
         except queue.Empty:
             self.close()
             raise HapticTimelineError("the play process did not open the device") from None
-        if message[0] == "error":
+        _, kind, answer = message
+        if kind == "error":
             self.close()
-            raise HapticTimelineError(message[1])
-        self.info: DeviceInfo = message[1]  # what the device declared as it opened
+            raise HapticTimelineError(answer)
+        self.info: DeviceInfo = answer  # what the device declared as it opened
 
     @property
     def alive(self) -> bool:
@@ -151,7 +153,9 @@ class PlayProcess:
         """Send a message carrying `project` as a delta against the last one sent."""
         with self._sending:
             change = delta(self._sent, project)
-            self._plays += kind == "play"
+            if kind == "play":
+                self._plays += 1
+                args = (*args, self._plays)  # the child tags the play's messages with it
             try:
                 self._to_child.send((kind, change, *args))
             except OSError:
@@ -171,16 +175,14 @@ class PlayProcess:
                     self._warmed.recv()
 
     def stop(self) -> None:
-        with suppress(OSError, ValueError):
+        with self._sending, suppress(OSError, ValueError):  # not amid a warm-up's send
             self._to_child.send(("stop",))
 
-    def _newest(self, message: tuple) -> bool:
-        """Whether `message` is the newest play's: a play's messages all come before its
-        "done", and the next play's after it, so those of a play the host stopped waiting for
-        (the USB knob plays out its queue first) are told by counting the "done"s."""
-        newest = self._done >= self._plays - 1
-        self._done += message[0] == "done"
-        return newest
+    def _newest(self, message: tuple) -> tuple | None:
+        """`message` without its play's number if it is the newest play's, else None (a play
+        the host stopped waiting for, such as a USB play still playing out its queue)."""
+        number, *rest = message
+        return tuple(rest) if number == self._plays else None
 
     def take(self) -> list[tuple]:
         """The newest play's messages the child has sent so far."""
@@ -190,8 +192,8 @@ class PlayProcess:
                 message = self._from_child.get_nowait()
             except (queue.Empty, OSError, ValueError):
                 return out
-            if self._newest(message):
-                out.append(message)
+            if (newest := self._newest(message)) is not None:
+                out.append(newest)
 
     def wait_done(self, timeout: float) -> list[tuple]:
         """The newest play's messages up to its ("done", ...), waiting at most `timeout` s."""
@@ -202,9 +204,9 @@ class PlayProcess:
                 message = self._from_child.get(timeout=max(0.0, end - time.perf_counter()))
             except (queue.Empty, OSError, ValueError):
                 return out
-            if self._newest(message):
-                out.append(message)
-                if message[0] == "done":
+            if (newest := self._newest(message)) is not None:
+                out.append(newest)
+                if newest[0] == "done":
                     return out
 
     def close(self) -> None:
@@ -232,7 +234,6 @@ class RemoteStream:
     def __init__(
         self,
         process: PlayProcess,
-        project: Project,
         rate: float,
         start: float,
         stop: float,
@@ -243,7 +244,6 @@ class RemoteStream:
         self.tracks = None if tracks is None else list(tracks)
         self.state = StreamState(position=start)
         self.lateness = HeardMeter(Lateness(lead=lead))
-        self._project = project
 
     def heard(self, position: float, live_version: int, counts: Lateness) -> None:
         """What the child said of its stream: where it is, the version it plays, its counts."""
@@ -255,7 +255,6 @@ class RemoteStream:
 
     def set_project(self, project: Project) -> int:
         """Send the child a new project state to play from its next block; its version."""
-        self._project = project
         self.state.version += 1
         self.process.send("edit", project, self.state.version)
         return self.state.version
@@ -291,16 +290,16 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
         device = open_device(device_name)
         device.warm_up()
     except HapticTimelineError as exc:
-        outbox.put(("error", str(exc)))
+        outbox.put((0, "error", str(exc)))
         return
     except Exception as exc:  # noqa: BLE001 - the host must hear why, not wait for a timeout
-        outbox.put(("error", unexpected("Opening the device", exc)))
+        outbox.put((0, "error", unexpected("Opening the device", exc)))
         return
     # From here this thread, and every thread it starts (the queue's feeder, each play's, their
     # chunk-ahead workers), run ahead of ordinary programs where permitted: an ordinary one
     # holding the interpreter lock when preempted would make the playing thread wait with it.
     prefer_real_time()
-    outbox.put(("ready", device.info))
+    outbox.put((0, "ready", device.info))
     mixer = Mixer(cache_bytes=256 * 2**20)
     project: Project | None = None
     play: _Play | None = None
@@ -370,8 +369,10 @@ class _Play:
         tracks: Iterable[str] | None,
         hand: Hand,
         asked: float,
+        number: int,
     ) -> None:
         info = device.info
+        self.number = number  # the host's number for this play, on each of its messages
         self.stream = LiveStream(
             project, info.rate, start, stop, loop, tracks, mixer=mixer, asked=asked, lead=info.lead
         )
@@ -384,11 +385,11 @@ class _Play:
 
     def _at(self, state) -> None:
         counts = self.stream.lateness.counts()
-        self.outbox.put(("at", state.position, state.live_version, counts))
+        self.outbox.put((self.number, "at", state.position, state.live_version, counts))
 
     def _part(self, part: LiveTelemetry) -> None:
         if len(part):
-            self.outbox.put(("part", part))
+            self.outbox.put((self.number, "part", part))
 
     def _run(self, device: Any, hand: Hand) -> None:
         try:
@@ -398,7 +399,7 @@ class _Play:
             outcome = str(exc)
         except Exception as exc:  # noqa: BLE001 - a bug must still end the play, and say so
             outcome = unexpected("Playing", exc)
-        self.outbox.put(("done", outcome, self.stream.lateness.counts()))
+        self.outbox.put((self.number, "done", outcome, self.stream.lateness.counts()))
 
     def end(self) -> None:
         """Stop the stream after its block and wait until the thread has said it is done, so

@@ -16,13 +16,12 @@ window's project is replaced (open, new, recover), `project_replaced` warms up o
 A time project on the sim or the USB knob plays from a process of its own (play_process), one
 for the editor's process, so the GUI's hold on the interpreter lock cannot delay a block. The USB
 knob is opened there only (`device` is then a ChildDevice: its declared info), so the hardware
-has one owner, and a Play waits for a hand-over in flight instead of playing here. `stream` is
-then a RemoteStream, the play's one record here (its project versions, where the child's stream
-is, its late-block counts), and edits cross to the child as deltas of the tracks and tiles that
-changed. The warm-up thread is what
-hands the child a whole project (4.2 MB, 0.87 s at 20,000 clips at load 7), so a Play sends
-only a delta; a Play pressed while that hand-over is still in flight waits HANDOVER_WAIT for it
-and then plays in the editor's process instead (the path devices other than the sim take).
+has one owner. `stream` is then a RemoteStream, the play's one record here (its project
+versions, where the child's stream is, its late-block counts), and edits cross to the child as
+deltas of the tracks and tiles that changed. The warm-up thread is what hands the child a whole
+project (4.2 MB, 0.87 s at 20,000 clips at load 7), so a Play sends only a delta; a sim Play
+pressed while that hand-over is still in flight waits HANDOVER_WAIT for it and then plays in
+the editor's process instead (the path of the other devices); a USB Play waits for it.
 """
 
 from __future__ import annotations
@@ -377,7 +376,7 @@ class Player(QObject):
         if owner is not None and owner is not self:
             owner.stop()  # another window's play: one knob plays one thing
         info = process.info
-        stream = RemoteStream(process, project, info.rate, start, stop, tracks, info.lead)
+        stream = RemoteStream(process, info.rate, start, stop, tracks, info.lead)
         process.send("play", project, start, stop, loop, tracks, self.hand, asked)
         self._remote, _Shared.owner = process, self
         return stream
