@@ -234,6 +234,7 @@ class RemoteStream:
     def __init__(
         self,
         process: PlayProcess,
+        project: Project,
         rate: float,
         start: float,
         stop: float,
@@ -244,6 +245,7 @@ class RemoteStream:
         self.tracks = None if tracks is None else list(tracks)
         self.state = StreamState(position=start)
         self.lateness = HeardMeter(Lateness(lead=lead))
+        self._project = project  # the newest state sent: what the child plays from its next block
 
     def heard(self, position: float, live_version: int, counts: Lateness) -> None:
         """What the child said of its stream: where it is, the version it plays, its counts."""
@@ -255,6 +257,7 @@ class RemoteStream:
 
     def set_project(self, project: Project) -> int:
         """Send the child a new project state to play from its next block; its version."""
+        self._project = project
         self.state.version += 1
         self.process.send("edit", project, self.state.version)
         return self.state.version

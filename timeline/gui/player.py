@@ -376,7 +376,7 @@ class Player(QObject):
         if owner is not None and owner is not self:
             owner.stop()  # another window's play: one knob plays one thing
         info = process.info
-        stream = RemoteStream(process, info.rate, start, stop, tracks, info.lead)
+        stream = RemoteStream(process, project, info.rate, start, stop, tracks, info.lead)
         process.send("play", project, start, stop, loop, tracks, self.hand, asked)
         self._remote, _Shared.owner = process, self
         return stream
