@@ -6,6 +6,8 @@ from collections.abc import Iterable
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from device.sim.params import KnobParams
 from device.sim.physics import KnobPhysics
 from timeline.plugins.device_protocol import (
@@ -65,8 +67,15 @@ class SimKnob(Device):
         ]
 
     def warm_up(self) -> None:
-        """Load the compiled servo loop (from numba's cache) on a knob of its own."""
-        KnobPhysics(self.params).run_block(CoefficientBlock.zeros(1))
+        """Load the compiled servo loop and the stability check's (from numba's cache) on a knob
+        of its own. A block with no spring skips the check, so the first block of a play with
+        one loaded the check's loop and scipy's expm on the playing thread: the first play's
+        175-215 ms stall at 20,000 clips. Two samples with a spring and damping, the second
+        unstable, go through every step of it (the eigenvalues too)."""
+        knob = KnobPhysics(self.params)
+        knob.start(Hand("hold"))
+        spring = np.array([0.0, 1.0, 1e4])
+        knob.run_block(CoefficientBlock(np.zeros(3), spring, np.array([0.0, 1e-3, 0.0])))
 
     def play(
         self,

@@ -237,8 +237,10 @@ class Stream:
             "so playback stopped"
         )
 
-    def telemetry(self) -> Telemetry:
-        """What the device reported for the samples sent, with the layers as sent."""
+    def telemetry(self, judged: bool = True) -> Telemetry:
+        """What the device reported for the samples sent, with the layers as sent, and (if
+        `judged`) the stability flags of the whole play (about 0.3 s per played second at
+        20,000 clips: every hand's loop at each change of the layers)."""
         n = self._n_sent
         rows = np.concatenate(self._received)[:n] if self._received else np.zeros((0, 3))
         sent = np.concatenate(self._sent) if self._sent else np.zeros((0, len(self.limits)))
@@ -251,7 +253,7 @@ class Stream:
         time = np.arange(n) * (1.0 / self.rate)
         saturated = np.abs(torque) >= self.limits[0]
         energy = self._energy(angle, torque)
-        flags = self._flags(time, layers)
+        flags = self._flags(time, layers) if judged else ()
         return Telemetry(float(self.rate), time, angle, velocity, torque, energy, saturated,
                          layers, flags, tuple(self.warnings()))  # fmt: skip
 

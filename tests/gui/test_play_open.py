@@ -92,3 +92,22 @@ def test_an_opened_project_plays_from_a_delta_and_the_process_ends_at_quit(
     QApplication.instance().aboutToQuit.emit()  # the application quits with its last window
     assert process.process.is_alive() is False
     assert player_module._Shared.process is None
+
+
+def test_a_recovered_autosave_crosses_to_the_play_process_before_any_play(window, qtbot):
+    win, player = window, window.player
+    recovered = quiet_sine()
+
+    class Entry:  # what autosave.recoverable() finds, as far as `recover` reads it
+        original = None
+
+        def load(self):
+            return recovered
+
+        def discard(self) -> None:
+            pass
+
+    win.recover(Entry())
+    qtbot.waitUntil(lambda: player._handed.is_set() and not player._warm_running, timeout=60_000)
+    held = player_module._Shared.process._sent  # what the child holds
+    assert held.tracks == recovered.tracks and dict(held.tiles) == dict(recovered.tiles)

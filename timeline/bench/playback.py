@@ -29,10 +29,12 @@ def run(quick: bool, out: Path) -> list[Table]:
     table = Table(
         f"Playback in the editor while the GUI works: {clips:,} clips, {seconds:g} s per gesture",
         ["device", "hog", "gesture", "lead ms", "blocks", "late", "gaps > 50 ms", "worst ms",
-         "first block ms", "named", "ended", "load"],
+         "first block ms", "named", "ended", "priority", "load"],
     )  # fmt: skip
-    for device, hog in runs:
-        for row in _session(device, clips, seconds, hog):
+    sessions = [(d, h, False) for d, h in runs]
+    sessions += [] if quick else [("sim", False, True), ("sim", True, True)]  # no editor
+    for device, hog, alone in sessions:
+        for row in _session(device, clips, seconds, hog, alone):
             table.rows.append(
                 [
                     "sim" if device == "sim" else "usb (real time)",
@@ -46,6 +48,7 @@ def run(quick: bool, out: Path) -> list[Table]:
                     _ms(row.get("first_block")),
                     "yes" if row.get("named") else ("—" if not row.get("late") else "NO"),
                     _ending(row.get("ended", "")),
+                    row.get("priority", "—"),
                     f"{row['load']:.1f}",
                 ]
             )
@@ -57,18 +60,21 @@ def run(quick: bool, out: Path) -> list[Table]:
         "named: the message bar named the late blocks; ended: how the play ended (the USB knob "
         "stops on an underrun); load: the 1-minute load average when the play ended",
         "each device in a fresh editor process, offscreen Qt; hog: `while True: pass` in "
-        "another process",
+        "another process; child alone: the play process with no editor (full run only)",
+        "priority: what the OS granted the play process's playing thread (prefer_real_time: "
+        "real-time where permitted, else nice -10, else normal; "
+        "HAPTIC_TIMELINE_PLAY_PRIORITY=normal turns it off)",
     ]
     return [table]
 
 
-def _session(device: str, clips: int, seconds: float, hog: bool) -> list[dict]:
+def _session(device: str, clips: int, seconds: float, hog: bool, alone: bool) -> list[dict]:
     env = {**os.environ, "QT_QPA_PLATFORM": "offscreen"}
     if device == "usb":
         env["HAPTIC_TIMELINE_USB_EMULATE"] = "realtime"
     args = [sys.executable, "-m", "timeline.bench.playback_session", "--device", device,
             "--clips", str(clips), "--seconds", str(seconds)]  # fmt: skip
-    args += ["--hog"] if hog else []
+    args += (["--hog"] if hog else []) + (["--alone"] if alone else [])
     done = subprocess.run(args, capture_output=True, text=True, env=env)
     rows = [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
     if done.returncode != 0 or not rows:

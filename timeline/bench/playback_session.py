@@ -34,11 +34,16 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=4.0)
     parser.add_argument("--hog", action="store_true")
     parser.add_argument("--gestures", default=",".join(GESTURES))
+    parser.add_argument("--alone", action="store_true", help="the play process with no editor")
     args = parser.parse_args()
     hog = subprocess.Popen([sys.executable, "-c", HOG]) if args.hog else None
     try:
-        for row in session(args.device, args.clips, args.seconds, args.gestures.split(",")):
-            print(json.dumps(row), flush=True)
+        if args.alone:
+            rows = [alone(args.device, args.clips, args.seconds)]
+        else:
+            rows = session(args.device, args.clips, args.seconds, args.gestures.split(","))
+        for row in rows:
+            print(json.dumps({**row, "priority": granted()}), flush=True)
     finally:
         if hog is not None:
             hog.kill()
@@ -70,6 +75,40 @@ def session(device: str, clips: int, seconds: float, gestures: list[str]) -> lis
     win.autosaver.discard()
     win.findings.close()
     return rows
+
+
+def alone(device: str, clips: int, seconds: float) -> dict:
+    """The play process with no editor beside it: warmed on the benchmark project as the editor
+    warms it, then one play of `seconds` from the start."""
+    from timeline.bench.scenes import FULL, QUICK, large_project
+    from timeline.gui.play_process import PlayProcess
+    from timeline.plugins.device_protocol import Hand
+
+    project = large_project(FULL if clips >= FULL.clips else replace(QUICK, clips=clips))
+    process = PlayProcess(device)
+    try:
+        process.warm(project, 0.0)
+        asked = time.perf_counter()
+        process.send("play", project, 0.0, seconds, False, None, Hand("hold"), asked)
+        done = process.wait_done(seconds + 30.0)[-1]
+    finally:
+        process.close()
+    return {"gesture": "child alone", **asdict(done[2]), "ended": done[1],
+            "load": os.getloadavg()[0]}  # fmt: skip
+
+
+def granted() -> str:
+    """The priority the play process's playing thread gets (prefer_real_time, tried on a
+    thread of this process, which the play process inherits its permissions from)."""
+    import threading
+
+    from timeline.plugins.device_protocol.child_process import prefer_real_time
+
+    got: list[str] = []
+    thread = threading.Thread(target=lambda: got.append(prefer_real_time()))
+    thread.start()
+    thread.join()
+    return got[0] or "normal"
 
 
 def _play(app, win, gesture: str, seconds: float) -> dict:

@@ -828,6 +828,7 @@ class MainWindow(QMainWindow):
             return
         self._load(self.doc.project, entry.original)
         self.doc.replace("recover", project)
+        self.player.project_replaced(self.doc.project)  # crosses now, as an opened project does
         entry.discard()
         self.messages.show_message("recovered; save to keep it")
 

@@ -1,10 +1,13 @@
-"""Time projects played on the simulated knob from a process of its own (Qt-free).
+"""Time projects played on the sim and the USB knob from a process of its own (Qt-free).
 
 In the editor's process the stream's renderer and the hand-over of blocks share the interpreter
 lock with the GUI thread, and a C++ call made from Python there (a scene update, a paint) holds
 it for 0.1-1.4 s at high load: blocks go out late. Here a child process (spawn) opens the device,
 owns a Mixer and the LiveStream, and runs `device.play(stream, hand)`; nothing the editor's
-threads do can delay a block. The host sends it project versions as the designer edits, and gets
+threads do can delay a block. The USB knob is opened only here (its transfers run in the stream
+process it starts, device.usb.process): the editor's process never holds the device, so a failed
+child or editor ends in the stream process's STOP, or the knob's watchdog ramp, never in torque
+held. The host sends it project versions as the designer edits, and gets
 back telemetry, where the stream is, its late-block counts and the play's ending.
 
 A project crosses the pipe as a delta against the last one sent (`delta`, `rebuild`): the tracks
@@ -12,9 +15,10 @@ and tiles whose objects changed (the model is immutable, so an unchanged part is
 object), and the ids of the rest. Only what the mixer reads crosses (axis, rate, tracks, tiles).
 
 Messages, host to child: ("warm", delta, start), ("play", delta, start, stop, loop, tracks, hand,
-asked), ("edit", delta, version), ("stop",), ("close",). Child to host: ("ready",) or ("error",
+asked, number), ("edit", delta, version), ("stop",), ("close",). Child to host, each message
+after the number of the play it belongs to (0 before any): ("ready", DeviceInfo) or ("error",
 sentence) once opened; while playing ("part", LiveTelemetry), ("at", position, live version,
-Lateness), then ("done", sentence or "", Lateness).
+Lateness), then ("done", sentence or "", Lateness). The host takes the newest play's only.
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ import multiprocessing
 import queue
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterable
 from contextlib import suppress
 from dataclasses import dataclass
@@ -32,16 +37,29 @@ from typing import Any
 
 from immutables import Map
 
-from timeline.errors import HapticTimelineError
+from timeline.errors import DeviceError, HapticTimelineError
 from timeline.model import Project, Track
-from timeline.plugins.device_protocol import Hand, LiveTelemetry, open_device
-from timeline.plugins.device_protocol.child_process import end_child
+from timeline.plugins.device_protocol import (
+    CoefficientBlock,
+    Device,
+    DeviceInfo,
+    Hand,
+    Lateness,
+    LiveTelemetry,
+    open_device,
+)
+from timeline.plugins.device_protocol.child_process import (
+    end_child,
+    ordinary,
+    prefer_real_time,
+)
 from timeline.rendering.mixer import Mixer
 
 from .job_errors import unexpected
-from .live_stream import CHUNK_SECONDS, LiveStream
+from .live_stream import CHUNK_SECONDS, LiveStream, StreamState
 
 START_SECONDS = 60.0  # a child that has not opened the device by then is not coming
+END_SECONDS = 30.0  # a play not ended this long after its stop is stuck (USB transfers time out)
 # The playing thread needs the lock for a moment every 10 ms block; the chunk-ahead worker's
 # render (Python bookkeeping between numpy calls) hands it over after this long, not 5 ms.
 SWITCH_SECONDS = 0.001
@@ -105,9 +123,9 @@ class PlayProcess:
         self._warmed, child_warmed = context.Pipe(duplex=False)
         self._from_child = context.Queue()  # the child's puts never block on a stalled host
         self.process = context.Process(
-            target=serve, args=(child_in, self._from_child, child_warmed, device_name), daemon=True,
-            name="play process",
-        )  # fmt: skip
+            target=serve, args=(child_in, self._from_child, child_warmed, device_name),
+            daemon=False, name="play process",
+        )  # fmt: skip  # not daemonic: the USB knob's stream process is its child; `close` ends it
         self.process.start()
         child_in.close()
         child_warmed.close()
@@ -115,14 +133,17 @@ class PlayProcess:
         self._sending = threading.Lock()  # one delta at a time against `_sent`
         self._warming = threading.Lock()  # one warm-up at a time waits for its answer
         self._sent: Project | None = None  # the project the child holds
+        self._plays = 0  # plays asked for: the newest one's number
         try:
             message = self._from_child.get(timeout=START_SECONDS)
         except queue.Empty:
             self.close()
             raise HapticTimelineError("the play process did not open the device") from None
-        if message[0] == "error":
+        _, kind, answer = message
+        if kind == "error":
             self.close()
-            raise HapticTimelineError(message[1])
+            raise HapticTimelineError(answer)
+        self.info: DeviceInfo = answer  # what the device declared as it opened
 
     @property
     def alive(self) -> bool:
@@ -132,6 +153,9 @@ class PlayProcess:
         """Send a message carrying `project` as a delta against the last one sent."""
         with self._sending:
             change = delta(self._sent, project)
+            if kind == "play":
+                self._plays += 1
+                args = (*args, self._plays)  # the child tags the play's messages with it
             try:
                 self._to_child.send((kind, change, *args))
             except OSError:
@@ -151,35 +175,115 @@ class PlayProcess:
                     self._warmed.recv()
 
     def stop(self) -> None:
-        with suppress(OSError, ValueError):
+        with self._sending, suppress(OSError, ValueError):  # not amid a warm-up's send
             self._to_child.send(("stop",))
 
+    def _newest(self, message: tuple) -> tuple | None:
+        """`message` without its play's number if it is the newest play's, else None (a play
+        the host stopped waiting for, such as a USB play still playing out its queue)."""
+        number, *rest = message
+        return tuple(rest) if number == self._plays else None
+
     def take(self) -> list[tuple]:
-        """The messages the child has sent so far."""
+        """The newest play's messages the child has sent so far."""
         out = []
         while True:
             try:
-                out.append(self._from_child.get_nowait())
+                message = self._from_child.get_nowait()
             except (queue.Empty, OSError, ValueError):
                 return out
+            if (newest := self._newest(message)) is not None:
+                out.append(newest)
 
     def wait_done(self, timeout: float) -> list[tuple]:
-        """The messages up to the play's ("done", ...), waiting at most `timeout` s for it."""
+        """The newest play's messages up to its ("done", ...), waiting at most `timeout` s."""
         out = []
+        end = time.perf_counter() + timeout
         while True:
             try:
-                message = self._from_child.get(timeout=timeout)
+                message = self._from_child.get(timeout=max(0.0, end - time.perf_counter()))
             except (queue.Empty, OSError, ValueError):
                 return out
-            out.append(message)
-            if message[0] == "done":
-                return out
+            if (newest := self._newest(message)) is not None:
+                out.append(newest)
+                if newest[0] == "done":
+                    return out
 
     def close(self) -> None:
         """Ask the child to go; make sure it went."""
         end_child(self.process, self._to_child, self._warmed)
         self._from_child.close()
         self._from_child.cancel_join_thread()
+
+
+@dataclass
+class HeardMeter:
+    """A play process's late-block counts as it last sent them (read as a LatenessMeter is)."""
+
+    heard: Lateness
+
+    def counts(self) -> Lateness:
+        return self.heard
+
+
+class RemoteStream:
+    """The editor's handle on a stream playing in the play process, its one record there: what
+    it plays (start, stop, rate), the newest project version, and where the child's stream is
+    and its late-block counts as the child last said (`heard`). `set_project` sends the edit."""
+
+    def __init__(
+        self,
+        process: PlayProcess,
+        project: Project,
+        rate: float,
+        start: float,
+        stop: float,
+        tracks: Iterable[str] | None,
+        lead: float,
+    ) -> None:
+        self.process, self.rate, self.start, self.stop = process, rate, start, stop
+        self.tracks = None if tracks is None else list(tracks)
+        self.state = StreamState(position=start)
+        self.lateness = HeardMeter(Lateness(lead=lead))
+        self._project = project  # the newest state sent: what the child plays from its next block
+
+    def heard(self, position: float, live_version: int, counts: Lateness) -> None:
+        """What the child said of its stream: where it is, the version it plays, its counts."""
+        state = self.state
+        state.position = position
+        if state.live_version != live_version:
+            state.live_version, state.live_at = live_version, time.perf_counter()
+        self.lateness.heard = counts
+
+    def set_project(self, project: Project) -> int:
+        """Send the child a new project state to play from its next block; its version."""
+        self._project = project
+        self.state.version += 1
+        self.process.send("edit", project, self.state.version)
+        return self.state.version
+
+    def render(self, project: Project, t0: float, t1: float) -> CoefficientBlock:
+        """The coefficients the child renders for `project` on [t0, t1), rendered here."""
+        return LiveStream(project, self.rate, t0, t1, tracks=self.tracks).render(project, t0, t1)
+
+
+class ChildDevice(Device):
+    """The editor's handle on a device only the play process opens (the USB knob: one owner of
+    the hardware): what it declared, and no play of its own here."""
+
+    def __init__(self, process: PlayProcess) -> None:
+        self.process = process
+
+    @property
+    def info(self) -> DeviceInfo:
+        return self.process.info
+
+    def play(self, program: Any, hand: Any = None, progress: Any = None, monitor: Any = None):
+        """Refused: this device plays time projects, from the play process only."""
+        raise DeviceError(
+            f"the {self.process.device_name} device plays time-mode projects, from the editor's "
+            "play process; play a position-mode project on the sim device"
+        )
 
 
 def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) -> None:
@@ -189,9 +293,16 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
         device = open_device(device_name)
         device.warm_up()
     except HapticTimelineError as exc:
-        outbox.put(("error", str(exc)))
+        outbox.put((0, "error", str(exc)))
         return
-    outbox.put(("ready",))
+    except Exception as exc:  # noqa: BLE001 - the host must hear why, not wait for a timeout
+        outbox.put((0, "error", unexpected("Opening the device", exc)))
+        return
+    # From here this thread, and every thread it starts (the queue's feeder, each play's, their
+    # chunk-ahead workers), run ahead of ordinary programs where permitted: an ordinary one
+    # holding the interpreter lock when preempted would make the playing thread wait with it.
+    prefer_real_time()
+    outbox.put((0, "ready", device.info))
     mixer = Mixer(cache_bytes=256 * 2**20)
     project: Project | None = None
     play: _Play | None = None
@@ -203,7 +314,8 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
                 gc.freeze()  # the project's objects: no collection need walk them while playing
             if kind == "warm" and project is not None:
                 if play is None or not play.thread.is_alive():  # else the mixer is the play's
-                    warm_up(device.info.rate, mixer, project, args[1])
+                    with ordinary():  # seconds of renders at 20,000 clips
+                        warm_up(device.info.rate, mixer, project, args[1])
                 warmed.send(True)
             elif kind == "play" and project is not None:
                 if play is not None:
@@ -223,6 +335,7 @@ def serve(inbox: Connection, outbox: Any, warmed: Connection, device_name: str) 
         if play is not None:
             play.end()
         device.close()
+        outbox.cancel_join_thread()  # a host gone need not read what is left: exit anyway
 
 
 def warm_up(rate: float, mixer: Mixer, project: Project, start: float) -> None:
@@ -259,8 +372,10 @@ class _Play:
         tracks: Iterable[str] | None,
         hand: Hand,
         asked: float,
+        number: int,
     ) -> None:
         info = device.info
+        self.number = number  # the host's number for this play, on each of its messages
         self.stream = LiveStream(
             project, info.rate, start, stop, loop, tracks, mixer=mixer, asked=asked, lead=info.lead
         )
@@ -273,11 +388,11 @@ class _Play:
 
     def _at(self, state) -> None:
         counts = self.stream.lateness.counts()
-        self.outbox.put(("at", state.position, state.live_version, counts))
+        self.outbox.put((self.number, "at", state.position, state.live_version, counts))
 
     def _part(self, part: LiveTelemetry) -> None:
         if len(part):
-            self.outbox.put(("part", part))
+            self.outbox.put((self.number, "part", part))
 
     def _run(self, device: Any, hand: Hand) -> None:
         try:
@@ -287,9 +402,10 @@ class _Play:
             outcome = str(exc)
         except Exception as exc:  # noqa: BLE001 - a bug must still end the play, and say so
             outcome = unexpected("Playing", exc)
-        self.outbox.put(("done", outcome, self.stream.lateness.counts()))
+        self.outbox.put((self.number, "done", outcome, self.stream.lateness.counts()))
 
     def end(self) -> None:
-        """Stop the stream after its block; the thread says it is done."""
+        """Stop the stream after its block and wait until the thread has said it is done, so
+        the next play's messages follow this one's "done" (the host counts on that)."""
         self.stream.stop_stream()
-        self.thread.join(timeout=2.0)
+        self.thread.join(timeout=END_SECONDS)

@@ -13,13 +13,15 @@ window has painted, `warm_up` loads the device's compiled code and renders the f
 ahead on a background thread, so the first block goes out within a few ms of Play; when the
 window's project is replaced (open, new, recover), `project_replaced` warms up on the new one.
 
-A time project on the simulated knob plays from a process of its own (play_process), one for
-the editor's process, so the GUI's hold on the interpreter lock cannot delay a block: `stream` is
-then the play's mirror here (its project versions, and where the child's stream is), and edits
-cross to the child as deltas of the tracks and tiles that changed. The warm-up thread is what
-hands the child a whole project (4.2 MB, 0.87 s at 20,000 clips at load 7), so a Play sends
-only a delta; a Play pressed while that hand-over is still in flight waits HANDOVER_WAIT for it
-and then plays in the editor's process instead (the path devices other than the sim take).
+A time project on the sim or the USB knob plays from a process of its own (play_process), one
+for the editor's process, so the GUI's hold on the interpreter lock cannot delay a block. The USB
+knob is opened there only (`device` is then a ChildDevice: its declared info), so the hardware
+has one owner. `stream` is then a RemoteStream, the play's one record here (its project
+versions, where the child's stream is, its late-block counts), and edits cross to the child as
+deltas of the tracks and tiles that changed. The warm-up thread is what hands the child a whole
+project (4.2 MB, 0.87 s at 20,000 clips at load 7), so a Play sends only a delta; a sim Play
+pressed while that hand-over is still in flight waits HANDOVER_WAIT for it and then plays in
+the editor's process instead (the path of the other devices); a USB Play waits for it.
 """
 
 from __future__ import annotations
@@ -45,7 +47,7 @@ from timeline.rendering.sound_out import SoundOut
 
 from .job_errors import unexpected
 from .live_stream import CHUNK_SECONDS, LiveStream, LiveTables
-from .play_process import PlayProcess
+from .play_process import ChildDevice, PlayProcess, RemoteStream
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
 LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this often
@@ -53,7 +55,14 @@ LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this o
 # long instead of CPython's 5 ms, so the playing thread, which needs it for a moment every
 # 10 ms block, waits less for it.
 SWITCH_SECONDS = 0.001
-OWN_PROCESS = ("sim",)  # devices whose time plays run in the play process
+OWN_PROCESS = ("sim", "usb")  # devices whose time plays run in the play process
+# Devices opened in the play process only (ChildDevice here): the USB knob, whose hardware has one
+# owner, and whose blocks must not depend on this process's interpreter lock.
+CHILD_ONLY = ("usb",)
+IDLE_SECONDS = 0.5  # the first warm-up waits for this long without input after the first paint
+_INPUT = frozenset(
+    (QEvent.Type.MouseButtonPress, QEvent.Type.MouseMove, QEvent.Type.KeyPress, QEvent.Type.Wheel)
+)
 STOP_SECONDS = 2.0  # a stop waits this long for the device to finish its block
 HANDOVER_WAIT = 0.005  # a Play waits this long (GUI thread) for the warm-up's hand-over
 
@@ -118,7 +127,8 @@ class Player(QObject):
         super().__init__(parent)
         self.device_name = "sim"
         self.device: Device | None = None
-        self.stream: LiveStream | None = None
+        # The time play's stream: here, or its handle in the play process (its one record here)
+        self.stream: LiveStream | RemoteStream | None = None
         self.tables: LiveTables | None = None
         self.hand = Hand("hold")
         self._thread: threading.Thread | None = None
@@ -141,12 +151,13 @@ class Player(QObject):
         self._warm_running = False  # the warm-up thread has not yet taken its last job
         self._handed = threading.Event()  # set: no project is waiting to cross to the child
         self._handed.set()
-        self._warm_source: Callable[[], Project] | None = None  # until the window first paints
+        self._warm_source: Callable[[], Project] | None = None  # until the first warm-up
+        self._idle: QTimer | None = None  # after the first paint: fires once input has paused
+        self._app = QCoreApplication.instance()
         self._late_named = (0, 0.0)  # late blocks already named, and when
         self._switch = 0.0  # the interpreter's switch interval before playing (0: not playing)
         self._opened: Device | None = None  # the device this player opened itself
         self._remote: PlayProcess | None = None  # the play process, while it plays for us
-        self._counts: Lateness | None = None  # the play process's newest late-block counts
         _Shared.end_with(QCoreApplication.instance())
 
     @staticmethod
@@ -174,7 +185,11 @@ class Player(QObject):
     def _open(self) -> Device:
         with self._opening:
             if self.device is None:
-                self.device = self._opened = open_device(self.device_name)
+                if self.device_name in CHILD_ONLY:
+                    opened: Device = ChildDevice(_Shared.get(self.device_name))
+                else:
+                    opened = open_device(self.device_name)
+                self.device = self._opened = opened
             return self.device
 
     def _own_process(self, device: Device, project: Project) -> bool:
@@ -182,23 +197,47 @@ class Player(QObject):
         return project.axis == "time" and self.device_name in OWN_PROCESS and device is self._opened
 
     def warm_up_once_painted(self, window: QObject, project: Callable[[], Project]) -> None:
-        """Warm up (below) on the project of the moment right after `window` first paints, so
-        the warm-up never delays the first paint."""
+        """Warm up (below) on the project of the moment once `window` has painted and the editor
+        has then had no input for IDLE_SECONDS, so the warm-up (which starts the play process)
+        never delays the first paint nor competes with the designer's first gestures. A Play
+        or a project replaced before that starts it at once."""
         self._warm_source = project
         window.installEventFilter(self)
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:
-        if event.type() == QEvent.Type.Paint and self._warm_source is not None:
+        kind = event.type()
+        if kind == QEvent.Type.Paint and watched is not self._app and self._idle is None:
             watched.removeEventFilter(self)
-            source, self._warm_source = self._warm_source, None
-            QTimer.singleShot(0, self, lambda: self.warm_up(source()))
+            self._idle = QTimer(self)
+            self._idle.setSingleShot(True)
+            self._idle.setInterval(round(IDLE_SECONDS * 1000))
+            self._idle.timeout.connect(self._warm_when_idle)
+            if self._app is not None:
+                self._app.installEventFilter(self)  # only until the warm-up starts
+            self._idle.start()
+        elif kind in _INPUT and self._idle is not None and self._warm_source is not None:
+            self._idle.start()  # input: not idle yet, wait again
         return False
+
+    def _warm_when_idle(self) -> None:
+        """The first warm-up, on the window's project of the moment (if none has started)."""
+        source, self._warm_source = self._warm_source, None
+        if self._app is not None:
+            self._app.removeEventFilter(self)
+        if source is not None:
+            self.warm_up(source())
 
     def warm_up(self, project: Project, start: float = 0.0) -> None:
         """On a background thread: open the device, hand the project to the play process,
         load its compiled code and render the project's first chunk from `start` into the mixer
         kept for the next play. Called again while that runs, it warms up on the newest
         project once the running one is done."""
+        if self._warm_source is not None:  # the first warm-up: no need to wait for idle now
+            self._warm_source = None
+            if self._app is not None:
+                self._app.removeEventFilter(self)
+            if self._idle is not None:
+                self._idle.stop()
         with self._warm_lock:
             self._handed.clear()
             self._warm_next = (project, start)
@@ -255,7 +294,7 @@ class Player(QObject):
         """Late blocks of the current (or last) time-mode play; None for a position play."""
         if self.stream is None:
             return None
-        return self._counts or self.stream.lateness.counts()
+        return self.stream.lateness.counts()
 
     def play(
         self,
@@ -273,6 +312,8 @@ class Player(QObject):
         """
         self.stop()
         asked = time.perf_counter()
+        if self._warm_source is not None:  # Play before the editor was idle: warm up now
+            self.warm_up(project, start)
         try:
             device = self._open()
             self.stream = self.tables = None
@@ -286,17 +327,20 @@ class Player(QObject):
             else:
                 if stop <= start:
                     raise HapticTimelineError("nothing to play: the project has no clips there")
-                warming = self._warm is not None and self._warm.is_alive()
-                mixer = None if warming else self._mixer  # one thread per mixer at a time
                 info = device.info
-                self.stream = LiveStream(
-                    project, info.rate, start, stop, loop, tracks, mixer=mixer, asked=asked,
-                    lead=info.lead,
-                )  # fmt: skip
-                self.stream.on_block = self._at
-                program, hand = self.stream, self.hand
-                if self._own_process(device, project) and self._handed.wait(HANDOVER_WAIT):
-                    self._play_there(project, start, stop, loop, tracks, asked)
+                if self._own_process(device, project) and self._handed.wait(
+                    None if self.device_name in CHILD_ONLY else HANDOVER_WAIT
+                ):  # a device the child alone holds waits for the hand-over, however long
+                    self.stream = self._play_there(project, start, stop, loop, tracks, asked)
+                else:
+                    warming = self._warm is not None and self._warm.is_alive()
+                    mixer = None if warming else self._mixer  # one thread per mixer at a time
+                    self.stream = LiveStream(
+                        project, info.rate, start, stop, loop, tracks, mixer=mixer, asked=asked,
+                        lead=info.lead,
+                    )  # fmt: skip
+                    self.stream.on_block = self._at
+                    program, hand = self.stream, self.hand
         except HapticTimelineError as exc:
             self.finished.emit(str(exc))
             return
@@ -325,15 +369,17 @@ class Player(QObject):
         loop: bool,
         tracks: Iterable[str] | None,
         asked: float,
-    ) -> None:
-        """Play the stream in the play process; `stream` stays here as its mirror."""
+    ) -> RemoteStream:
+        """Play the stream in the play process; its handle here."""
         process = _Shared.get(self.device_name)
         owner = _Shared.owner
         if owner is not None and owner is not self:
             owner.stop()  # another window's play: one knob plays one thing
-        self._counts = None
+        info = process.info
+        stream = RemoteStream(process, project, info.rate, start, stop, tracks, info.lead)
         process.send("play", project, start, stop, loop, tracks, self.hand, asked)
         self._remote, _Shared.owner = process, self
+        return stream
 
     def _heard(self, messages: list[tuple]) -> None:
         """Take in what the play process said: telemetry, where it is, late counts, the end."""
@@ -341,14 +387,13 @@ class Player(QObject):
         for kind, *args in messages:
             if kind == "part":
                 self._parts.append(args[0])
-            elif kind == "at" and stream is not None:
-                self._position = stream.state.position = args[0]
-                if stream.state.live_version != args[1]:
-                    stream.state.live_version, stream.state.live_at = args[1], time.perf_counter()
-                self._counts = args[2]
+            elif kind == "at" and isinstance(stream, RemoteStream):
+                stream.heard(*args)
+                self._position = args[0]
             elif kind == "done":
-                self._outcome, self._counts = args[0], args[1]
-                self._remote = None
+                if isinstance(stream, RemoteStream):
+                    stream.lateness.heard = args[1]
+                self._outcome, self._remote = args[0], None
 
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:
@@ -433,9 +478,7 @@ class Player(QObject):
         if not self.playing:
             return
         if self.stream is not None:
-            version = self.stream.set_project(project)
-            if self._remote is not None:
-                self._remote.send("edit", project, version)
+            self.stream.set_project(project)  # a RemoteStream sends it to the play process
             self.sound.follow(project)
         elif self.tables is not None:
             self.tables.set_project(project)
@@ -445,9 +488,9 @@ class Player(QObject):
         reported after this (the playhead stays where a stop or a scrub left it)."""
         self._halt.set()
         self.sound.stop()
-        if self.stream is not None:
+        if isinstance(self.stream, LiveStream):
             self.stream.stop_stream()
-        if self._remote is not None:
+        if self._remote is not None:  # still playing in the play process
             self._remote.stop()
             self._heard(self._remote.wait_done(STOP_SECONDS))
             if self._remote is not None:  # no answer: the next play starts it over
