@@ -1,6 +1,8 @@
 """Test-wide settings: Qt draws offscreen so the suite runs on machines with no display, and
 OpenBLAS keeps to one thread as the command line does (timeline.cli.main.one_blas_thread); the
-`busy_interpreter` fixture for tests of real time under a held interpreter lock."""
+`busy_interpreter` fixture for tests of real time under a held interpreter lock. Hypothesis
+has no per-example deadline here: the suite asserts behaviour, never time, and a loaded
+machine must not fail a property."""
 
 import os
 import sys
@@ -9,6 +11,10 @@ from collections.abc import Callable, Iterator
 from contextlib import AbstractContextManager, contextmanager
 
 import pytest
+from hypothesis import settings
+
+settings.register_profile("suite", deadline=None)
+settings.load_profile("suite")
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # before anything loads numpy
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
