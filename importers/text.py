@@ -55,9 +55,17 @@ def _is_number(token: str) -> bool:
 
 
 def _decode(path: Path) -> str:
-    raw = path.read_bytes()
+    """The file's text, refused by its size before it is read (and again if it grew)."""
+    too_large = FormatError(
+        f"{path.name} is larger than {MAX_BYTES >> 30} GiB, the most a text table may be"
+    )
+    size = path.stat().st_size
+    if size > MAX_BYTES:
+        raise too_large
+    with path.open("rb") as file:
+        raw = file.read(size + 1)
     if len(raw) > MAX_BYTES:
-        raise FormatError(f"{path.name} is too large to read as a text table")
+        raise too_large
     if b"\x00" in raw:
         raise FormatError(f"{path.name} is not a text file")
     try:
