@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import warnings
 
 import pytest
 
@@ -14,10 +15,17 @@ from timeline.files import projectfile
 
 
 def _run(argv: list[str]) -> tuple[int, str]:
+    """Exit code and stderr, every warning written into it as a user would see it (pytest
+    otherwise takes them before they reach stderr)."""
     err = io.StringIO()
-    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+    with (
+        warnings.catch_warnings(record=True) as caught,
+        contextlib.redirect_stderr(err),
+        contextlib.redirect_stdout(io.StringIO()),
+    ):
+        warnings.simplefilter("always")
         code = cli.main(argv)
-    return code, err.getvalue()
+    return code, err.getvalue() + "".join(f"{w.category.__name__}: {w.message}\n" for w in caught)
 
 
 def _project(tmp_path, name="p", full_scale=None, **clip):
@@ -63,3 +71,18 @@ def test_a_clip_stretched_1e308_plays_its_start_and_exports(tmp_path, verb):
     argv[-1] = str(tmp_path / argv[-1]) if verb[0] == "export" else argv[-1]
     code, err = _run(argv)
     assert code == 0 and "Traceback" not in err and "Warning" not in err
+
+
+def test_a_sine_under_detents_checks_without_a_warning(tmp_path):
+    """Found with an OTIO import (reduced): somewhere the pair's frequency estimate is
+    infinite, and the skin model multiplied infinity by zero (numpy's 'invalid value
+    encountered in multiply' before check's findings)."""
+    project, track = edits.add_track(edits.new_project(rate=1000.0, templates=False), "drive")
+    project, sine = edits.add_tile(project, generator("sine", 0.5, frequency=5.0))
+    project, _ = edits.add_clip(project, track, sine, 0.0)
+    project, tile = edits.add_tile(project, generator("detents", 0.3, count=4))
+    project, _ = edits.add_clip(project, track, tile, 0.1)
+    path = tmp_path / "detents.htl"
+    projectfile.save(project, path)
+    code, err = _run(["check", str(path)])
+    assert code in (0, 3) and "Warning" not in err and "Traceback" not in err
