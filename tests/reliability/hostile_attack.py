@@ -40,7 +40,8 @@ ISOLATED = ("json-structure", "mat", "otioz")  # categories parsed in the child,
 EXPORTS = (".ahap", ".haptic", ".hjif", ".otio", ".otioz", ".wav", ".mat", ".csv", ".h")
 LEAKS = ("Error:", "Error(", "numpy", "usecols", "sys.", "render_chunks", "NoneType",
          "has no attribute", "passed back", "index out of range", "object of type", "unhashable",
-         "takes ", "argument", "not subscriptable", "<class", "dtype", "errno", "0x7f")  # fmt: skip
+         "takes ", "positional argument", "not subscriptable", "<class", "dtype", "errno",
+         "0x7f")  # fmt: skip
 
 
 class Hang(Exception):
