@@ -77,8 +77,8 @@ def features(name: str, design: Sampled) -> Features:
     force = {t: v for t, v in design.terms.items() if t in "kbm" or design.axis == "position"}
     force_profiles = {t: _resampled(v) for t, v in force.items()}
     scales = {t: float(np.abs(v).max(initial=0.0)) for t, v in force.items()}
-    events = [] if d is None or design.axis == "position" else _events(d, rate)
-    if not events:  # no drive, or none above 1e-300 (a full scale of 5e-324)
+    # no drive, or none above 1e-300 (a full scale of 5e-324): a silent icon
+    if d is None or design.axis == "position" or not (events := _events(d, rate)):
         length = design.length / rate
         return Features(name, design.axis, length, np.zeros(1), np.full(ENVELOPE_POINTS, -300.0),
                         0.0, 0.0, force_profiles, scales)  # fmt: skip
