@@ -57,7 +57,8 @@ def positive_rate(rate: object, name: str) -> float:
     try:
         value = float(rate)  # type: ignore[arg-type]
     except (TypeError, ValueError):
-        raise FormatError(f"the rate in {name} is not a number") from None
+        shown = f" ({rate[:40]!r})" if isinstance(rate, str) else ""
+        raise FormatError(f"the rate in {name} is not a number{shown}") from None
     if not (math.isfinite(value) and value > 0):
         raise FormatError(f"the rate in {name} must be a positive number, not {value}")
     return value

@@ -16,6 +16,7 @@ recording: a unitless shape, and the import says so.
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 from typing import Any
@@ -45,6 +46,8 @@ def _open(path: Path) -> sf.SoundFile:
         return sf.SoundFile(path)
     except sf.LibsndfileError as exc:
         reason = str(exc.error_string).rstrip(".")
+        if "internal error" in reason.lower():  # libsndfile's words for a header it gave up on
+            reason = "its header is damaged"
         raise FormatError(f"{path.name} is not an audio file that can be read ({reason})") from None
     except (RuntimeError, TypeError, ValueError) as exc:
         raise FormatError(f"{path.name} is not an audio file that can be read ({exc})") from None
@@ -55,8 +58,9 @@ def _open(path: Path) -> sf.SoundFile:
 _FRAME_MISMATCH = re.compile(r"Frame count read from .*?\((\d+)\).*?\((\d+)\)", re.DOTALL)
 
 
-def _aiff_rate_exponent(path: Path) -> int | None:
-    """The 15-bit exponent of an AIFF's COMM sample rate (80-bit extended), None if not found."""
+def _aiff_rate(path: Path) -> float | None:
+    """An AIFF's COMM sample rate (80-bit extended) as declared, NaN for a NaN or infinity (the
+    all-ones exponent), None if no COMM chunk is found."""
     with open(path, "rb") as raw:
         if raw.read(12)[8:12] not in (b"AIFF", b"AIFC"):
             return None
@@ -66,17 +70,35 @@ def _aiff_rate_exponent(path: Path) -> int | None:
                 return None
             size = int.from_bytes(head[4:], "big")
             if head[:4] == b"COMM":
-                field = raw.read(18)[8:10]
-                return int.from_bytes(field, "big") & 0x7FFF if len(field) == 2 else None
+                field = raw.read(18)[8:18]
+                if len(field) < 10:
+                    return None
+                sign_exponent = int.from_bytes(field[:2], "big")
+                exponent = sign_exponent & 0x7FFF
+                if exponent == 0x7FFF:
+                    return math.nan
+                mantissa = int.from_bytes(field[2:], "big")
+                try:
+                    value = math.ldexp(mantissa, exponent - 16383 - 63)
+                except OverflowError:
+                    value = math.inf
+                return -value if sign_exponent & 0x8000 else value
             raw.seek(size + size % 2, 1)
     return None
 
 
 def _check_complete(path: Path, f: sf.SoundFile) -> None:
-    if f.format == "AIFF" and _aiff_rate_exponent(path) == 0x7FFF:
+    declared = _aiff_rate(path) if f.format == "AIFF" else None
+    if declared is not None and math.isnan(declared):
         # libsndfile reads a NaN or infinite rate as 67,108,864 Hz without a word
         raise FormatError(
             f"{path.name} declares a sample rate that is not a finite number (NaN or infinity)"
+        )
+    if declared is not None and not (declared >= 1 and abs(declared - f.samplerate) < 1):
+        # ... and 0, 1e-3 or a denormal as 1 Hz, one past its range as 67,108,864 Hz
+        raise FormatError(
+            f"{path.name} declares a sample rate of {declared:.6g} Hz, which would be read as "
+            f"{f.samplerate} Hz; it is refused rather than played at the wrong speed"
         )
     for match in _SHORT_CHUNK.finditer(f.extra_info):
         if int(match.group(3)) < int(match.group(2)):

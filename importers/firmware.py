@@ -39,6 +39,7 @@ UNITS = {
     "mass": "kg*m^2",
 }
 INT16_MAX = 32767
+FLOAT32_MAX = float(np.finfo(np.float32).max)
 MAX_ENTRIES = 1_000_000  # per table: beyond this it will not fit a microcontroller's flash
 PER_LINE = 8
 DEFAULT_PER_UNIT = {"position": 180.0 / math.pi, "time": 1000.0}  # 1 per degree, 1 per ms
@@ -82,7 +83,8 @@ def grid(project: Project, rate: float | None = None) -> Grid:
     per_unit = rate or DEFAULT_PER_UNIT[project.axis]
     if not (math.isfinite(per_unit) and per_unit > 0):
         raise FormatError(f"a table's rate must be a positive number, not {per_unit}")
-    steps = max(1, math.ceil(span * per_unit - 1e-6))
+    # a span of 1e307 s at 1000 per s is no count at all: past MAX_ENTRIES is as good as infinite
+    steps = max(1, math.ceil(min(span * per_unit - 1e-6, 2.0 * MAX_ENTRIES)))
     if rate is None:
         steps = min(steps, MAX_DEFAULT_INTERVALS)
     if steps + 1 > MAX_ENTRIES:
@@ -184,6 +186,12 @@ def _tables(source: Layers, fixed_point: bool) -> dict[str, dict[str, Any]]:
             counts, scale = quantised(values)
             entry.update(type="int16", scale=scale, values=counts.tolist())
         else:
+            peak = float(np.abs(values).max(initial=0.0))
+            if peak > FLOAT32_MAX:
+                raise FormatError(
+                    f"the {name} layer reaches {peak:.3g}, beyond the largest float32 "
+                    f"({FLOAT32_MAX:.3g}); export it with --fixed-point, or scale it down"
+                )
             entry.update(type="float32", values=values.astype(np.float32).tolist())
         out[name] = entry
     return out

@@ -63,9 +63,21 @@ def _parse(path: Path) -> dict[str, Any]:
     try:
         contents = scipy.io.loadmat(path, squeeze_me=False, mat_dtype=False)
     except Exception as exc:  # scipy's parser raises many types on malformed input
-        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise FormatError(f"{path.name} is not a readable .mat file ({detail[:120]})") from None
+        raise FormatError(f"{path.name} is not a readable .mat file ({_why(exc)})") from None
     return {k: v for k, v in contents.items() if not k.startswith("__")}
+
+
+def _why(exc: Exception) -> str:
+    """scipy's reason a .mat file cannot be read, in the file's terms where it speaks of code
+    ("index out of range", "cannot reshape array of size 8 into shape (...)")."""
+    text = str(exc).splitlines()[0] if str(exc) else ""
+    if isinstance(exc, LookupError | AttributeError | TypeError) or not text:
+        return "its data ends early or is damaged"
+    if "could not read bytes" in text:
+        return "its data ends early"
+    if "reshape" in text:
+        return "an array's declared shape does not match the values it holds"
+    return text[:120]
 
 
 def _numeric_vector(value: Any) -> np.ndarray | None:

@@ -32,7 +32,17 @@ from timeline.tiles import Tile
 COMMENTS = ("#", "%", "//")
 MAX_BYTES = 2**31
 ROW_BLOCK = 4096  # rows formatted by one string operation when writing
-_RATE_COMMENT = re.compile(r"\b(?:rate|fs)\s*[=:]\s*([-+0-9.eE]+)", re.IGNORECASE)
+# the whole token after "rate=", a unit our writers add allowed: "1_000" or "10kHz" were read as
+# 1 and 10 when only the leading digits were taken
+_RATE_COMMENT = re.compile(r"\b(?:rate|fs)\s*[=:]\s*([^\s,;]+)", re.IGNORECASE)
+_RATE_UNITS = ("/s", "/deg", "/rad", "hz")
+
+
+def _rate_number(token: str) -> str:
+    """The number of a rate comment's token, without a unit of _RATE_UNITS (else the token,
+    whole, for the sentence that refuses it)."""
+    number = next((token[: -len(u)] for u in _RATE_UNITS if token.lower().endswith(u)), token)
+    return number if _is_number(number) else token
 
 
 def _delimiter(line: str) -> str | None:
@@ -55,9 +65,17 @@ def _is_number(token: str) -> bool:
 
 
 def _decode(path: Path) -> str:
-    raw = path.read_bytes()
+    """The file's text, refused by its size before it is read (and again if it grew)."""
+    too_large = FormatError(
+        f"{path.name} is larger than {MAX_BYTES >> 30} GiB, the most a text table may be"
+    )
+    size = path.stat().st_size
+    if size > MAX_BYTES:
+        raise too_large
+    with path.open("rb") as file:
+        raw = file.read(size + 1)
     if len(raw) > MAX_BYTES:
-        raise FormatError(f"{path.name} is too large to read as a text table")
+        raise too_large
     if b"\x00" in raw:
         raise FormatError(f"{path.name} is not a text file")
     try:
@@ -85,7 +103,7 @@ class Table:
                 comments.append(body)
                 match = _RATE_COMMENT.search(body)
                 if match:
-                    self.rate = positive_rate(match.group(1), name)
+                    self.rate = positive_rate(_rate_number(match.group(1)), name)
             first += 1
         if first == len(lines):
             raise FormatError(f"{name} holds no data rows")
@@ -103,7 +121,7 @@ class Table:
             for line in lines[first:]:
                 match = line.strip().startswith(COMMENTS) and _RATE_COMMENT.search(line)
                 if match:
-                    self.rate = positive_rate(match.group(1), name)
+                    self.rate = positive_rate(_rate_number(match.group(1)), name)
         if not rows:
             raise FormatError(f"{name} has a header but no data rows")
         try:

@@ -72,3 +72,32 @@ def test_an_honest_aiff_keeps_its_rate(tmp_path):
     path = tmp_path / "x.aiff"
     sf.write(path, TONE, 8000, subtype="PCM_16")
     assert FORMAT.read(path).rate == 8000
+
+
+@pytest.mark.parametrize(
+    ("exponent", "mantissa", "declared"),
+    [
+        (0, 0, "0"),
+        (0, 1, "0"),
+        (16373, 0x8312_6E97_8D4F_DF3B, "0.001"),
+        (0x7FFE, 2**64 - 1, "inf"),
+    ],  # fmt: skip
+)
+def test_an_aiff_rate_libsndfile_cannot_hold_is_refused(tmp_path, exponent, mantissa, declared):
+    """0, a denormal and 1e-3 Hz were read as 1 Hz (a 0.1 s sound lasted 100 s), the largest
+    finite rate as 67,108,864 Hz, all without a word (found by the hostile campaign)."""
+    path = tmp_path / "x.aiff"
+    sf.write(path, np.zeros(4), 8000, subtype="PCM_16")
+    data = bytearray(path.read_bytes())
+    struct.pack_into(">HQ", data, data.find(b"COMM") + 16, exponent, mantissa)
+    path.write_bytes(bytes(data))
+    with pytest.raises(FormatError, match=rf"^x.aiff declares a sample rate of {declared} Hz, "):
+        FORMAT.read(path)
+
+
+def test_a_header_libsndfile_gives_up_on_is_called_damaged(tmp_path):
+    path = tmp_path / "x.aiff"
+    sf.write(path, TONE, 8000, subtype="PCM_16")
+    path.write_bytes(path.read_bytes()[:30])
+    with pytest.raises(FormatError, match=r"^x.aiff is not an audio file that can be read \(its "):
+        FORMAT.read(path)

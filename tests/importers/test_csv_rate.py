@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
 from timeline.files import exporting, importing
-from timeline.plugins.file_formats import Layers
+from timeline.plugins.file_formats import FormatError, Layers
 
 RATE = 10_000 / 3  # 3333.33... Hz: the time column alone rounds it
 DRIVE = np.sin(np.arange(50) / 7.0)
@@ -47,3 +49,17 @@ def test_the_txt_file_keeps_a_plain_matrix_for_matlab_load(tmp_path):
     assert lines[0] == "% time\tdrive" and lines[-1] == f"% rate={RATE!r}"
     assert np.loadtxt(path, comments="%").shape == (50, 2)  # what Matlab's load does
     assert importing.read_file(path).placements[0].tile.rate == RATE
+
+
+@pytest.mark.parametrize("header", ["# rate=10kHz", "% fs: 10kHz,", "# rate=10_k"])
+def test_a_rate_comment_is_read_whole_or_refused(tmp_path, header):
+    """Only its leading digits were read: `10kHz` was 10 Hz, `1_000` 1 Hz (a 2-value file
+    lasted 2 s), without a word (found by the hostile campaign)."""
+    path = tmp_path / "r.csv"
+    path.write_text(f"{header}\n0.5\n-0.5\n")
+    token = header.split("=")[-1].split(": ")[-1].rstrip(",")
+    with pytest.raises(FormatError, match=re.escape(f"rate in r.csv is not a number ({token!r})")):
+        importing.read_file(path)
+    for header, rate in (("# rate=1_000", 1000.0), ("% fs: 2.5e3Hz,", 2500.0)):
+        path.write_text(f"{header}\n0.5\n-0.5\n")  # Python's 1_000; a unit in hertz
+        assert importing.read_file(path).placements[0].tile.rate == rate

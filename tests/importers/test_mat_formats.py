@@ -6,6 +6,7 @@ from __future__ import annotations
 import h5py
 import numpy as np
 import pytest
+import scipy.io
 
 from timeline.files import importing
 from timeline.plugins.file_formats import FormatError
@@ -96,3 +97,16 @@ def test_matlab_v73(tmp_path):
     tile = _read(path)
     assert tile.rate == 250.0
     np.testing.assert_array_equal(tile.data, VALUES)
+
+
+@pytest.mark.parametrize(
+    ("cut", "said"), [(100, "its data ends early or is damaged"), (150, "its data ends early")]
+)
+def test_a_truncated_v5_file_is_said_in_the_files_terms(tmp_path, cut, said):
+    """scipy's 'index out of range' and 'could not read bytes' were passed on as they were
+    (found by the hostile campaign)."""
+    path = tmp_path / "m.mat"
+    scipy.io.savemat(path, {"drive": VALUES, "fs": 250.0}, oned_as="column")
+    path.write_bytes(path.read_bytes()[:cut])
+    with pytest.raises(FormatError, match=rf"^m.mat is not a readable .mat file \({said}\)$"):
+        _read(path)

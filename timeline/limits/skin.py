@@ -29,7 +29,8 @@ def displacement_per_unit(
 
     An actuator's full scale is the device's maximum output; a knob's hand defaults to `hold`.
     """
-    f = np.maximum(np.asarray(frequency, dtype=np.float64), 1.0)
+    # an infinite frequency (an ADSR released over 1e308 s) moves the skin as little as 1e15 Hz
+    f = np.clip(np.asarray(frequency, dtype=np.float64), 1.0, 1e15)
     w = 2.0 * np.pi * f
     if actuator is not None:
         return actuator.peak_acceleration * G * actuator.gain(f) / (w * w) / info.max_output

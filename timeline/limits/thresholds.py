@@ -15,6 +15,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 DETECTION_MIN_DB = -20.0  # dB re 1 um peak displacement at the most sensitive frequencies
@@ -31,7 +33,8 @@ def detection_threshold(frequency):  # noqa: ANN001, ANN201 - scalar or array in
     """Peak skin displacement (m) a hand just detects at a frequency (Hz), Verrillo's U."""
     f = np.clip(np.asarray(frequency, dtype=np.float64), DETECTION_PLATEAU_HZ, None)
     low, high = DETECTION_BEST
-    octaves = np.where(f < low, np.log2(low / f), np.where(f > high, np.log2(f / high), 0.0))
+    with np.errstate(divide="ignore"):  # both branches are computed: low / inf is 0
+        octaves = np.where(f < low, np.log2(low / f), np.where(f > high, np.log2(f / high), 0.0))
     return 1e-6 * 10.0 ** ((DETECTION_MIN_DB + DETECTION_SLOPE_DB * octaves) / 20.0)
 
 
@@ -39,4 +42,7 @@ def level_difference_db(a: float, b: float) -> float:
     """|20*log10(a/b)|: how far apart two amplitudes are in dB (inf when one is zero)."""
     if a <= 0 or b <= 0:
         return 0.0 if a == b else float("inf")
-    return abs(20.0 * float(np.log10(a / b)))
+    ratio = a / b
+    if not 0.0 < ratio < math.inf:  # 1e-300 against 1e300: apart by more than a float holds
+        return abs(20.0 * (math.log10(a) - math.log10(b)))
+    return abs(20.0 * float(np.log10(ratio)))

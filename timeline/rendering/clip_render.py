@@ -38,6 +38,9 @@ def first_sample(time: float, origin: float, rate: float) -> int:
     return math.ceil((time - origin) * rate) if k is None else k
 
 
+_FAR = float(2**62)  # samples: a clip's end beyond this is placed here (clip_samples)
+
+
 def clip_samples(clip: Clip, origin: float, rate: float) -> tuple[int, int, float]:
     """The clip's samples [c0, c1) on the grid origin + k/rate, and the clip offset of c0.
 
@@ -46,7 +49,9 @@ def clip_samples(clip: Clip, origin: float, rate: float) -> tuple[int, int, floa
     ends, written out: the mixer places every clip with it.)
     """
     start, end = clip.start, clip.end
-    x, y = (start - origin) * rate, (end - origin) * rate
+    # an end past 2^62 samples (a stretch of 1e308 is 1e311) lies beyond any render all the same
+    x = min(max((start - origin) * rate, -_FAR), _FAR)
+    y = min(max((end - origin) * rate, -_FAR), _FAR)
     c0, c1 = round(x), round(y)
     scale = GRID_TOLERANCE * rate
     if abs(y - c1) > max(MIN_TOLERANCE, scale * (abs(end) + abs(origin))):

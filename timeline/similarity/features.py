@@ -72,14 +72,16 @@ def features(name: str, design: Sampled) -> Features:
     """Measure one icon."""
     rate = design.rate
     d = design.terms.get("d")
+    if d is not None:  # beyond 1e100 an icon is as loud all the same: its squares stay finite
+        d = np.clip(d, -1e100, 1e100)
     force = {t: v for t, v in design.terms.items() if t in "kbm" or design.axis == "position"}
     force_profiles = {t: _resampled(v) for t, v in force.items()}
     scales = {t: float(np.abs(v).max(initial=0.0)) for t, v in force.items()}
-    if d is None or design.axis == "position" or not np.any(d):
+    # no drive, or none above 1e-300 (a full scale of 5e-324): a silent icon
+    if d is None or design.axis == "position" or not (events := _events(d, rate)):
         length = design.length / rate
         return Features(name, design.axis, length, np.zeros(1), np.full(ENVELOPE_POINTS, -300.0),
                         0.0, 0.0, force_profiles, scales)  # fmt: skip
-    events = _events(d, rate)
     first, last = events[0][0], events[-1][1]
     body = d[first : last + 1]
     fr = frames(body, rate)
