@@ -96,11 +96,14 @@ class ClipLayer(QGraphicsItem):
         for part in parts if len(parts) > 1 else ():
             for lane, _, found in self.visible(part):
                 inside.setdefault(lane, []).append(found)
+        shown = self._shown_range(painter, widget, exposed)
         for lane, clips, found in self.visible(exposed):
             if found.size == 0:
                 continue
             painter.setOpacity(0.35 if clips.muted else 1.0)
-            batch = found.size >= BATCH_FROM  # the level of detail of the whole exposed rect
+            # the level of detail of what the view shows of the lane, not of the part repainted:
+            # a dragged clip repainted alone is drawn as the rest of its crowded lane is
+            batch = clips.between(*shown).size >= BATCH_FROM
             if len(parts) > 1:  # the rest would be drawn only to be clipped away
                 found = np.intersect1d(found, np.concatenate([*inside.get(lane, []), found[:0]]))
                 if found.size == 0:
@@ -117,6 +120,17 @@ class ClipLayer(QGraphicsItem):
                 item.paint(painter, exposed.translated(-pos))
                 painter.restore()
         painter.setOpacity(1.0)
+
+    def _shown_range(self, painter: QPainter, widget, exposed: QRectF) -> tuple[float, float]:  # noqa: ANN001
+        """The axis range the view shows (the painted widget's rectangle in scene units, a
+        narrow clip's grab area beyond each side); `exposed` when painted into no widget."""
+        shown = exposed
+        if widget is not None:
+            inverse, invertible = painter.worldTransform().inverted()
+            if invertible:
+                shown = inverse.mapRect(QRectF(widget.rect()))
+        g = self.lane_geometry
+        return g.u(shown.left() - GRAB_PX), g.u(shown.right() + GRAB_PX)
 
     def _paint_boxes(
         self, painter: QPainter, lane: int, clips: LaneClips, found: np.ndarray
