@@ -1,5 +1,5 @@
 """A clip drag repaints only what shows the clip: the lanes and the inspector's clip fields, not
-the palette, the track headers, the waveform editor, the transport or the tile's fields (paint
+the ruler, the palette, the track headers, the waveform editor, the transport or the tile's fields (paint
 events counted; the time a drag takes is measured by `haptic-timeline bench editor`), and what it
 repaints looks as a fresh paint of the whole window would."""
 
@@ -47,6 +47,7 @@ def areas(window) -> dict[str, QWidget]:
         "transport": win.transport,
         "tile fields": inspector.title,
         **{f"tile {name}": box for name, box in inspector.boxes.items()},
+        "ruler": win.ruler,
         "clip fields": inspector.pages["clip"],
         "lanes": win.view.viewport(),
     }
