@@ -1,7 +1,7 @@
 """A clip drag repaints only what shows the clip: the lanes and the inspector's clip fields, not
-the ruler, the palette, the track headers, the waveform editor, the transport or the tile's fields (paint
-events counted; the time a drag takes is measured by `haptic-timeline bench editor`), and what it
-repaints looks as a fresh paint of the whole window would."""
+the ruler, the palette, the track headers, the waveform editor, the transport or the tile's
+fields (paint events counted; the time a drag takes is measured by `haptic-timeline bench
+editor`), and what it repaints looks as a fresh paint of the whole window would."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from collections import Counter
 
 import pytest
 from PySide6.QtCore import QEvent, QObject, QPoint, Qt
-from PySide6.QtTest import QTest
 from PySide6.QtGui import QImage
+from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QWidget
 
 from timeline import edits
