@@ -1,6 +1,7 @@
 """A clip drag repaints only what shows the clip: the lanes and the inspector's clip fields, not
-the palette, the track headers, the waveform editor, the transport or the tile's fields (paint
-events counted; the time a drag takes is measured by `haptic-timeline bench editor`)."""
+the ruler, the palette, the track headers, the waveform editor, the transport or the tile's
+fields (paint events counted; the time a drag takes is measured by `haptic-timeline bench
+editor`), and what it repaints looks as a fresh paint of the whole window would."""
 
 from __future__ import annotations
 
@@ -8,8 +9,11 @@ from collections import Counter
 
 import pytest
 from PySide6.QtCore import QEvent, QObject, QPoint, Qt
+from PySide6.QtGui import QImage
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication, QWidget
+
+from timeline import edits
 
 from .helpers import clip_point
 
@@ -43,6 +47,7 @@ def areas(window) -> dict[str, QWidget]:
         "transport": win.transport,
         "tile fields": inspector.title,
         **{f"tile {name}": box for name, box in inspector.boxes.items()},
+        "ruler": win.ruler,
         "clip fields": inspector.pages["clip"],
         "lanes": win.view.viewport(),
     }
@@ -73,3 +78,34 @@ def test_a_clip_drag_repaints_only_the_lanes_and_the_clip_fields(window, areas):
     assert counts["lanes"] >= 8 and counts["clip fields"] >= 8  # the clip moved, its start shown
     quiet = {name: counts[name] for name in areas if name not in ("lanes", "clip fields")}
     assert quiet == dict.fromkeys(quiet, 0)
+
+
+def _pixels(image: QImage) -> bytes:
+    return image.convertToFormat(QImage.Format.Format_RGB32).constBits().tobytes()
+
+
+def test_a_clip_dragged_on_a_crowded_lane_is_drawn_as_a_fresh_paint_draws_it(window):
+    """On a lane showing many clips they are boxes; the repaint of a dragged clip alone drew it
+    (and the clips under the snap line) with its wave, fades and label, until a full paint."""
+    win = window
+    t1, sine = win.ids["t1"], win.ids["sine"]
+    items = [(t1, sine, 1.6 + 0.25 * i, {"source_out": 0.2}) for i in range(12)]
+    project, added = edits.add_clips(win.doc.project, items)
+    win.doc.replace("add clips", project)
+    win.view.snapping = True  # the snap line's strip across the lanes is repainted too
+    QApplication.processEvents()
+    viewport = win.view.viewport()
+    at = clip_point(win, added[5])
+    QTest.mousePress(viewport, LEFT, NO, at)
+    for step in range(1, 6):
+        QTest.mouseMove(viewport, at + QPoint(4 * step, 0))
+        QApplication.processEvents()
+    assert win.doc.project.find_clip(added[5])[1].start != 1.6 + 0.25 * 5
+    corner = viewport.mapTo(win, QPoint(0, 0))
+    size = viewport.size()
+    screen = QApplication.primaryScreen()  # offscreen: what has been painted so far
+    painted = screen.grabWindow(win.winId(), corner.x(), corner.y(), size.width(), size.height())
+    fresh = viewport.grab()  # everything painted again
+    QTest.mouseRelease(viewport, LEFT, NO, at + QPoint(20, 0))
+    assert painted.size() == fresh.size()
+    assert _pixels(painted.toImage()) == _pixels(fresh.toImage())

@@ -64,30 +64,33 @@ def _fresh_counts(win):  # noqa: ANN001, ANN202
     return findings
 
 
-def test_a_slow_drag_leaves_no_stale_check_running(window, qtbot, monkeypatch, slow_checks):
+def test_a_slow_drag_starts_no_check_and_leaves_none_stale(window, qtbot, monkeypatch, slow_checks):
+    """Pauses in a drag longer than the check's delay start no check (each used to start one,
+    made stale by the next move); the check running when the drag began is stopped, its result
+    dropped, and the state the drag leaves is checked once the mouse lets go."""
     monkeypatch.setattr(findings_overlay, "DELAY_MS", 20)
     release, started = slow_checks
     win = window
     findings = _fresh_counts(win)
-    _wait_until(qtbot, lambda: findings.counts["started"] >= 1)
+    _wait_until(qtbot, lambda: findings.counts["started"] == 1)  # running as the drag begins
     vp = win.view.viewport()
     at = clip_point(win, win.ids["c1"])
     QTest.mousePress(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at)
     for step in range(1, 6):
         QTest.mouseMove(vp, at + QPoint(4 * step, 0))
-        # a pause longer than the delay: a check starts, and only one runs at a time
-        _wait_until(qtbot, lambda s=step: findings.counts["started"] >= s + 1)
-        assert len(findings.stale_running()) <= 1
-    QTest.mouseMove(vp, at + QPoint(30, 0))  # an edit: the running check is stale
+        qtbot.wait(60)  # a pause three times the delay
+        assert findings.counts["started"] == 1 and not findings.settled
+    _wait_until(qtbot, lambda: not findings.stale_running())  # stopped at its next step
+    assert findings.counts["cancelled"] == 1 and findings.report is not None
+    shown = findings.report
     QTest.mouseRelease(vp, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier, at)
-    # the released state's own check starts; every earlier one stopped, none ran to its end
-    _wait_until(qtbot, lambda: not findings.stale_running() and findings.busy)
-    _wait_until(qtbot, lambda: findings.counts["started"] == findings.counts["cancelled"] + 1)
-    counts = findings.counts
-    assert counts["started"] >= 7 and counts["finished"] == 0
+    _wait_until(qtbot, lambda: findings.counts["started"] == 2)  # the released state's check
+    assert findings.busy and not findings.stale_running() and findings.report is shown
     release.set()
     _wait_until(qtbot, lambda: findings.settled)
-    assert counts["finished"] == 1 and findings.report is not None
+    counts = findings.counts
+    assert (counts["started"], counts["finished"], counts["cancelled"]) == (2, 1, 1)
+    assert len(started) == 2 and findings.report is not shown
 
 
 def test_queued_checks_are_dropped_not_run(window, qtbot, monkeypatch, slow_checks):

@@ -119,3 +119,38 @@ def test_edge_index_finds_the_nearest_edge_a_walk_over_all_clips_finds():
     assert snap(3.31, [index.nearest(project, 3.31)], 0.0, 0.05) == _brute_nearest(
         project, 3.31, []
     )
+
+
+def _lanes(win) -> dict[int, list[tuple[str, float, float, tuple]]]:
+    """Lane -> its clips as the clip layer holds them: id, start, end, covered span, in order."""
+    return {
+        lane: [
+            (i.clip.id, float(s), float(e), i.covered)
+            for i, s, e in zip(clips.items, clips.starts, clips.ends, strict=True)
+        ]
+        for lane, clips in win.view.scene().layer.lanes.items()
+    }
+
+
+def test_a_drag_over_other_clips_hatches_and_orders_them_as_a_fresh_scene(window, qtbot):
+    """A drag along a track updates the dragged clip's item and the items it comes to cover or
+    leaves, without going over the lane's clips again: the result is what a new window shows."""
+    window.doc.replace("many clips", _many_clips(2, 8))
+    window.view.refresh()
+    moved = window.doc.project.tracks[0].clips[2]
+    start = clip_point(window, moved.id)
+    for end in (QPoint(70, 0), QPoint(120, 0), QPoint(-190, 0)):  # onto, past, back over
+        drag(window, start, start + end, steps=6)
+        start = clip_point(window, moved.id)
+        from timeline.gui.main_window import MainWindow
+
+        other = MainWindow(window.doc.project)
+        qtbot.addWidget(other)
+        other.view.lane_geometry.px_per_unit = window.view.lane_geometry.px_per_unit
+        other.view.refresh()
+        assert _lanes(window) == _lanes(other)
+        assert any(covered for lane in _lanes(window).values() for *_, covered in lane) == (
+            end.x() > 0
+        )
+        other.player.close()
+        other.autosaver.discard()

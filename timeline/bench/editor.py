@@ -63,8 +63,9 @@ def run(quick: bool, out: Path) -> list[Table]:
           checks["stopped_ms"], checks["stale_after"]]],
     )  # fmt: skip
     stale.notes.append(
-        "a stale check stops at its next step (the longest, stability, ~0.7 s at 20k clips); "
-        "queued checks are dropped at once"
+        "a drag starts no check until the mouse lets go; the check running as it began stops at "
+        "its next step (the longest left: rendering the design, ~2.6 s at 20k clips at load ~10);"
+        " queued checks are dropped at once"
     )
     launch = Table(
         f"Launch to first paint (new process, bytecode cached, {LAUNCHES} launches of each "

@@ -190,6 +190,8 @@ def shift_clips(project: Project, clip_ids: Iterable[str], shift: float) -> Proj
         project.find_clip(clip_id)
     if not math.isfinite(shift):
         raise EditError(f"clips move by a finite time, not {shift!r}")
+    if not ids:  # a drag carrying no other clip: every track stays the same object
+        return project
     changed = {}
     for track in project.tracks:
         if not ids.isdisjoint(track.clips_by_id):

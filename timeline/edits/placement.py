@@ -70,7 +70,16 @@ def overlaps(project: Project, track_id: str) -> dict[str, tuple[tuple[float, fl
     starts = np.array([c.start for c in track_clips], dtype=np.float64)
     ends = np.array([c.end for c in track_clips], dtype=np.float64)
     order = np.lexsort((ends, starts))  # by start, then end; stable as sorted() is
-    starts, ends = starts[order], ends[order]
+    lo, hi = covered_spans(starts[order], ends[order])
+    found: dict[str, tuple[tuple[float, float], ...]] = {}
+    for i in np.flatnonzero(hi - lo > EPS).tolist():
+        found[track_clips[order[i]].id] = ((float(lo[i]), float(hi[i])),)
+    return found
+
+
+def covered_spans(starts: np.ndarray, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """`overlaps` on clips already in (start, end) order, as arrays: each clip's covered span
+    runs from lo to hi, where hi - lo > EPS."""
     reach = np.r_[-np.inf, np.maximum.accumulate(ends)[:-1]]  # max end of the clips before
     later = np.r_[np.maximum.accumulate(ends[::-1])[::-1][1:], -np.inf]  # of the clips after
     following = np.r_[starts[1:], np.inf]  # the next clip's start
@@ -79,10 +88,7 @@ def overlaps(project: Project, track_id: str) -> dict[str, tuple[tuple[float, fl
     inside = following < ends - EPS  # later clips start inside it
     lo = np.where(inside, np.minimum(lo, following), lo)
     hi = np.where(inside, np.maximum(hi, np.minimum(ends, later)), hi)
-    found: dict[str, tuple[tuple[float, float], ...]] = {}
-    for i in np.flatnonzero(hi - lo > EPS).tolist():
-        found[track_clips[order[i]].id] = ((float(lo[i]), float(hi[i])),)
-    return found
+    return lo, hi
 
 
 def into_gap(project: Project, clip_ids: list[str], at: float) -> Project:

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import fields
 from functools import cache
+from operator import attrgetter
 
 import numpy as np
 from PySide6.QtCore import QLineF, QPointF, QRectF, Qt
@@ -46,6 +47,8 @@ def _fade_curve(shape: str) -> tuple[list[float], list[float]]:
     return xs.tolist(), fade_in_gain(xs, shape).tolist()
 
 
+# every field of a clip but its start, as one tuple (what its wave's columns depend on)
+_SHAPE = attrgetter(*(f.name for f in fields(Clip) if f.name != "start"))
 WHOLE_WAVE_PX = 4096  # a clip up to this wide keeps its whole wave's columns between paints
 
 
@@ -243,7 +246,7 @@ class ClipItem:
         drawn are kept: they depend on where the clip sits only through its start, so a clip
         dragged along its lane, and its neighbours repainted around it, reuse them."""
         clip = self.clip
-        key = (replace(clip, start=0.0), self.rate, self._h, self.lane_geometry.px_per_unit, x0, x1)
+        key = (_SHAPE(clip), self.rate, self._h, self.lane_geometry.px_per_unit, x0, x1)
         if self._wave is not None and self._wave[1] is self.tile and self._wave[0] == key:
             return self._wave[2]
         count = max(1, x1 - x0)

@@ -27,14 +27,43 @@ BATCH_FROM = 8  # clips visible on a lane from which they are drawn as boxes
 class LaneClips:
     """One lane's clips in start order, with their starts and ends as arrays for bisection."""
 
-    def __init__(self, items: Sequence[ClipItem]) -> None:
-        ordered = sorted(items, key=lambda item: item.clip.start)
+    def __init__(self, items: Sequence[ClipItem], arrays: tuple[np.ndarray, ...] = ()) -> None:
+        ordered = sorted(items, key=lambda item: item.clip.start) if not arrays else list(items)
         self.items = ordered
-        self.starts = np.array([i.clip.start for i in ordered], dtype=np.float64)
-        self.ends = np.array([i.clip.end for i in ordered], dtype=np.float64)
+        if arrays:  # already in order, with their starts and ends (moved)
+            self.starts, self.ends = arrays
+        else:
+            self.starts = np.array([i.clip.start for i in ordered], dtype=np.float64)
+            self.ends = np.array([i.clip.end for i in ordered], dtype=np.float64)
         self.longest = float((self.ends - self.starts).max()) if ordered else 0.0
         self.muted = bool(ordered) and ordered[0].muted
         self.colour = ordered[0].colour if ordered else QColor("#888888")
+
+    def moved(self, starts: Sequence[float], items: Sequence[ClipItem]) -> LaneClips | None:
+        """These clips' items (updated in place; `starts`: where they started) put where they
+        now start, without sorting the lane again; None when two clips would start together
+        (their order is then the track's, which a full sort keeps)."""
+        at = [int(np.searchsorted(self.starts, start)) for start in starts]
+        if any(
+            i >= len(self.items) or self.items[i] is not item
+            for i, item in zip(at, items, strict=True)
+        ):
+            return None
+        kept = np.ones(len(self.items), dtype=bool)
+        kept[at] = False
+        rest = [item for item, keep in zip(self.items, kept.tolist(), strict=True) if keep]
+        starts_left, ends_left = self.starts[kept], self.ends[kept]
+        new_starts = np.array([i.clip.start for i in items], dtype=np.float64)
+        new_ends = np.array([i.clip.end for i in items], dtype=np.float64)
+        order = np.argsort(new_starts, kind="stable")
+        where = np.searchsorted(starts_left, new_starts[order])
+        ordered = np.insert(starts_left, where, new_starts[order])
+        if ordered.size > 1 and not (np.diff(ordered) > 0).all():
+            return None
+        for offset, (i, j) in enumerate(zip(where.tolist(), order.tolist(), strict=True)):
+            rest.insert(i + offset, items[j])
+        ends = np.insert(ends_left, where, new_ends[order])
+        return LaneClips(rest, (ordered, ends))
 
     def between(self, u0: float, u1: float) -> np.ndarray:
         """Indices of the clips that reach into [u0, u1] (axis units)."""
@@ -96,11 +125,14 @@ class ClipLayer(QGraphicsItem):
         for part in parts if len(parts) > 1 else ():
             for lane, _, found in self.visible(part):
                 inside.setdefault(lane, []).append(found)
+        shown = self._shown_range(painter, widget, exposed)
         for lane, clips, found in self.visible(exposed):
             if found.size == 0:
                 continue
             painter.setOpacity(0.35 if clips.muted else 1.0)
-            batch = found.size >= BATCH_FROM  # the level of detail of the whole exposed rect
+            # the level of detail of what the view shows of the lane, not of the part repainted:
+            # a dragged clip repainted alone is drawn as the rest of its crowded lane is
+            batch = clips.between(*shown).size >= BATCH_FROM
             if len(parts) > 1:  # the rest would be drawn only to be clipped away
                 found = np.intersect1d(found, np.concatenate([*inside.get(lane, []), found[:0]]))
                 if found.size == 0:
@@ -117,6 +149,17 @@ class ClipLayer(QGraphicsItem):
                 item.paint(painter, exposed.translated(-pos))
                 painter.restore()
         painter.setOpacity(1.0)
+
+    def _shown_range(self, painter: QPainter, widget, exposed: QRectF) -> tuple[float, float]:  # noqa: ANN001
+        """The axis range the view shows (the painted widget's rectangle in scene units, a
+        narrow clip's grab area beyond each side); `exposed` when painted into no widget."""
+        shown = exposed
+        if widget is not None:
+            inverse, invertible = painter.worldTransform().inverted()
+            if invertible:
+                shown = inverse.mapRect(QRectF(widget.rect()))
+        g = self.lane_geometry
+        return g.u(shown.left() - GRAB_PX), g.u(shown.right() + GRAB_PX)
 
     def _paint_boxes(
         self, painter: QPainter, lane: int, clips: LaneClips, found: np.ndarray

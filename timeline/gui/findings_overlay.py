@@ -212,8 +212,9 @@ class FindingsOverlay(QObject):
     """Checks the document after edits and shows the findings on the timeline view.
 
     One check runs at a time: an edit makes the running check stale and stops it at its next
-    step (limits.check's `interrupt`), a queued one is dropped, so a drag with pauses leaves no
-    pile of checks behind it. The first check waits for the window's first paint.
+    step (limits.check's `interrupt`), a queued one is dropped, and a drag starts no check until
+    the mouse lets go, so a drag with pauses leaves no pile of checks behind it. The first check
+    waits for the window's first paint.
     """
 
     ready = Signal(object, int)  # Checked or HapticTimelineError, version
@@ -244,7 +245,9 @@ class FindingsOverlay(QObject):
         self._timer.setSingleShot(True)
         self._timer.timeout.connect(self._start)
         self.ready.connect(self._show)
+        self._held = False  # an edit waits for the drag that made it to end
         doc.changed.connect(lambda _project: self.schedule())
+        view.gesture_finished.connect(self._let_go)
         view.scene().sceneRectChanged.connect(lambda _rect: self._redraw())  # zoom, new lanes
         view.viewport().installEventFilter(self)  # the first check after the first paint
 
@@ -276,10 +279,18 @@ class FindingsOverlay(QObject):
         return False
 
     def schedule(self) -> None:
-        """Check again once edits pause; the check under way (now stale) stops."""
+        """Check again once edits pause; the check under way (now stale) stops. An edit made
+        while the mouse holds a drag is checked once it lets go: a pause in a drag starts none."""
         self.version += 1
         self._cancel()
-        if not self._closed:  # an edit as the window closes starts no check
+        self._held = self.view.gesture is not None
+        if not self._closed and not self._held:  # an edit as the window closes starts no check
+            self._timer.start(DELAY_MS)
+
+    def _let_go(self) -> None:
+        """A drag ended: check what it left."""
+        if self._held and not self._closed:
+            self._held = False
             self._timer.start(DELAY_MS)
 
     def _cancel(self) -> None:

@@ -16,6 +16,7 @@ from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import QLineEdit, QMenu, QWidget
 
 from timeline.edits import markers
+from timeline.model import Project
 
 from .geometry import axis_text, display_factor, display_unit, format_tick, nice_step
 from .inspector_marker import move_marker_tracked
@@ -53,8 +54,20 @@ class Ruler(QWidget):
         self.scrubber: Scrubber | None = None  # plays what is under a scrubbed playhead
         self._key: object = None
         self._base = None
+        self._shows = self._shown_of(self.doc.project)  # what it shows of the project
         view.zoomed.connect(self.update)
-        self.doc.changed.connect(self.update)
+        self.doc.changed.connect(self._project_changed)
+
+    def _project_changed(self, project: Project) -> None:
+        """Repaint when the axis, loop region or markers changed, not when a clip moved."""
+        shows = self._shown_of(project)
+        if shows != self._shows:
+            self._shows = shows
+            self.update()
+
+    @staticmethod
+    def _shown_of(project: Project) -> tuple[object, ...]:
+        return (project.axis, project.loop, project.markers)
 
     # --- mapping ---------------------------------------------------------------------------
 

@@ -6,6 +6,7 @@ import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
+import numpy as np
 from PySide6.QtCore import QLineF, QPointF, QRect, QRectF
 from PySide6.QtGui import QColor, QPainter, QPen
 from PySide6.QtWidgets import (
@@ -15,7 +16,7 @@ from PySide6.QtWidgets import (
     QToolTip,
 )
 
-from timeline.edits.placement import overlaps
+from timeline.edits.placement import EPS, covered_spans, overlaps
 from timeline.model import Clip, Project, Track
 from timeline.plugins.track_kinds import track_kind
 from timeline.tiles import Tile
@@ -48,6 +49,10 @@ class _TrackShown:
     @property
     def clip_ids(self) -> set[str]:
         return set(self.track.clips_by_id)
+
+    def hatched(self) -> list[ClipItem]:
+        """The items of its clips that show a covered span."""
+        return [i for i in self.clips.items if i.covered]
 
     def same(
         self,
@@ -154,6 +159,10 @@ class TimelineScene(QGraphicsScene):
         if before is not None and same_tiles and before.lane == lane and before.view == view:
             unchanged = before.track.clips_by_id
             tiles = dict(before.tiles)
+        if unchanged:
+            shown = self._move_items(project, track, before, tiles, colour)
+            if shown is not None:
+                return shown
         covered = overlaps(project, track.id)
         muted = view[-1]
         for clip in track.clips:
@@ -192,6 +201,74 @@ class TimelineScene(QGraphicsScene):
         selected = frozenset(c.id for c in track.clips if c.id in self.selection)
         clips = LaneClips([self.items_by_clip[c.id] for c in track.clips])
         return _TrackShown(track, lane, selected, view, tiles, clips)
+
+    def _move_items(
+        self,
+        project: Project,
+        track: Track,
+        before: _TrackShown,
+        tiles: dict[str, Tile],
+        colour: str,
+    ) -> _TrackShown | None:
+        """A track whose clips changed but none came or went (a drag along it): update the
+        changed clips' items and those whose covered span changed, and put the changed ones
+        where they now start, without a walk over the lane's items. None: do it all again."""
+        old = before.track.clips_by_id
+        if len(old) != len(track.clips) or track.clips_by_id.keys() != old.keys():
+            return None
+        selected = frozenset(i for i in self.selection if i in track.clips_by_id)
+        changed = [c for c in track.clips if old[c.id] is not c]
+        if not changed or selected != before.selected:
+            return None  # nothing moved, or the selection did: the full update decides
+        items = [self.items_by_clip[c.id] for c in changed]
+        starts = [old[c.id].start for c in changed]
+        for clip, item in zip(changed, items, strict=True):
+            self._show_clip(project, track, clip, item, tiles, colour, before.view, item.covered)
+        clips = before.clips.moved(starts, items)
+        if clips is None:
+            return None
+        lo, hi = covered_spans(clips.starts, clips.ends)
+        now = {clips.items[i].clip.id: i for i in np.flatnonzero(hi - lo > EPS).tolist()}
+        for item in {*items, *(clips.items[i] for i in now.values()), *before.hatched()}:
+            i = now.get(item.clip.id)
+            covered = () if i is None else ((float(lo[i]), float(hi[i])),)
+            if covered != item.covered:
+                self._show_clip(
+                    project, track, item.clip, item, tiles, colour, before.view, covered
+                )
+        return _TrackShown(track, before.lane, before.selected, before.view, tiles, clips)
+
+    def _show_clip(
+        self,
+        project: Project,
+        track: Track,
+        clip: Clip,
+        item: ClipItem,
+        tiles: dict[str, Tile],
+        colour: str,
+        view: TrackView,
+        covered: tuple[tuple[float, float], ...],
+    ) -> None:
+        """Update one clip's item and repaint where it was and is."""
+        tile = tiles.get(clip.tile_id)
+        if tile is None:
+            tile = tiles[clip.tile_id] = project.tile(clip.tile_id)
+        before_rect = item.sceneBoundingRect()
+        changed = item.update_from(
+            clip,
+            tile,
+            track.id,
+            item.lane,
+            colour,
+            project.rate,
+            clip.id in self.selection,
+            view[-1],
+            covered,
+            project.axis,
+        )
+        if changed:
+            self.update(item.sceneBoundingRect())
+            self.update(before_rect)
 
     def _drop_items(self, clip_ids: Iterable[str], track_id: str) -> None:
         """Remove the items of clips that left a track (unless another track now shows them)."""

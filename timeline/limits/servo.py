@@ -258,6 +258,7 @@ def _deflated(dynamics: Dynamics, period: float, load: Load) -> np.ndarray:
     return out
 
 
+PIECE = 1 << 16  # unstable samples judged at a time by whole_loop (each piece's roots found apart)
 BATCH = 64  # samples tested side by side (independent chains: the compiler vectorises them)
 
 
@@ -398,17 +399,36 @@ def whole_loop(
         if not bad.any():
             continue
         at = np.flatnonzero(bad)
-        with np.errstate(over="ignore", invalid="ignore"):  # absurd layers: not finite
-            polys = rows[0] + np.outer(spring[at], rows[1]) + np.outer(b[at], rows[2])
-            polys += np.outer(m[at], rows[3])
-        finite = np.isfinite(polys).all(axis=1)
         radius = np.full(at.size, np.inf)
-        # equal samples (a held layer) have one polynomial: find each distinct one's roots once
-        distinct, which = np.unique(polys[finite], axis=0, return_inverse=True)
-        radius[finite] = loop_radius(distinct, interrupt)[which.reshape(-1)]
+        for first in range(0, at.size, PIECE):  # pieces: a stale check stops between them
+            interrupt()
+            part = at[first : first + PIECE]
+            radius[first : first + part.size] = _radius(
+                rows, spring[part], b[part], m[part], interrupt
+            )
         worst[at] = np.fmax(worst[at], radius)
         unstable[load.name] = bad
     return WholeLoop(worst, unstable)
+
+
+def _radius(
+    rows: np.ndarray,
+    k: np.ndarray,
+    b: np.ndarray,
+    m: np.ndarray,
+    interrupt: Callable[[], None],
+) -> np.ndarray:
+    """The growth per period of the loop at each (k, b, m) (inf where its polynomial is not
+    finite), each distinct polynomial's roots found once."""
+    with np.errstate(over="ignore", invalid="ignore"):  # absurd layers: not finite
+        polys = rows[0] + np.outer(k, rows[1]) + np.outer(b, rows[2])
+        polys += np.outer(m, rows[3])
+    finite = np.isfinite(polys).all(axis=1)
+    radius = np.full(k.size, np.inf)
+    # equal samples (a held layer) have one polynomial: find each distinct one's roots once
+    distinct, which = np.unique(polys[finite], axis=0, return_inverse=True)
+    radius[finite] = loop_radius(distinct, interrupt)[which.reshape(-1)]
+    return radius
 
 
 def layers_inside(
