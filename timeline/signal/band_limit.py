@@ -35,7 +35,8 @@ ALIAS_LIMIT = 1e-3
 def _chirp_frequency(u: np.ndarray, duration: float, p: Mapping[str, float]) -> np.ndarray:
     f0, f1 = p["f0"], p["f1"]
     if p["exponential"] and f0 > 0 and f1 > 0 and f0 != f1:
-        with np.errstate(over="ignore"):  # inf: above every rate, so the band limit masks it
+        # inf (or NaN where the ratio overflows) reads as above every rate: the band limit masks it
+        with np.errstate(over="ignore", invalid="ignore"):
             return f0 * np.exp(np.log(f1 / f0) * u / duration)
     return f0 + (f1 - f0) * u / duration
 
