@@ -10,13 +10,10 @@ from PySide6.QtCore import QSize, Qt
 from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence, QPalette
 from PySide6.QtWidgets import (
     QApplication,
-    QDialog,
-    QFileDialog,
     QFrame,
     QGridLayout,
     QMainWindow,
     QMenu,
-    QMessageBox,
     QScrollArea,
     QSplitter,
     QWidget,
@@ -36,7 +33,6 @@ from .autosave import Autosaver, Recoverable, recoverable
 from .clipboard import ClipClipboard
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
-from .findings_overlay import FindingsOverlay
 from .first_paint import after_first_paint
 from .gestures.pivot import PivotGesture
 from .message_bar import MessageBar
@@ -52,6 +48,9 @@ from .track_header import HeaderColumn
 from .transport import Transport
 
 if TYPE_CHECKING:
+    from PySide6.QtWidgets import QMessageBox
+
+    from .findings_overlay import FindingsOverlay
     from .help import HelpMenu
     from .inspector import Inspector
     from .palette import Palette
@@ -147,12 +146,13 @@ class MainWindow(QMainWindow):
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self.clip_actions: list[QAction] = []
         self._panels: tuple[Palette, WaveformEditor, Inspector] | None = None
+        self._findings: FindingsOverlay | None = None
+        self._painted = False
         self._build()
         self.autosaver = Autosaver(self.doc)
         if project is not None and path is not None:
             self.autosaver.on_disk(path)  # the journal starts from the file opened
         self.autosaver.failed.connect(lambda text: self.messages.show_message(text, "error"))
-        self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
         if not panels_after_paint:
             self.build_panels()
         self.transport.device.currentTextChanged.connect(lambda _: self.findings.schedule())
@@ -172,7 +172,7 @@ class MainWindow(QMainWindow):
         self.resize(*DEFAULT_SIZE)
         self.restored = window_state.restore(self)  # size, splitters, docks and hand
         if panels_after_paint:
-            after_first_paint(self.view.viewport(), self.build_panels)
+            after_first_paint(self.view.viewport(), self._first_painted)
 
     # --- layout ----------------------------------------------------------------------------
 
@@ -230,6 +230,22 @@ class MainWindow(QMainWindow):
         self.statusBar().setSizeGripEnabled(False)
         self.menus = {key: self.menuBar().addMenu(title) for key, title in MENUS.items()}
         self.sound_import = SoundImport(self)  # its dock is restored with the window's state
+
+    def _first_painted(self) -> None:
+        self._painted = True
+        self.build_panels()
+
+    @property
+    def findings(self) -> FindingsOverlay:
+        """The findings check and its shading (built now if it was not yet: after the first
+        paint, with the panels, when the window was made with `panels_after_paint`)."""
+        if self._findings is None:
+            from .findings_overlay import FindingsOverlay  # not on the way to the first paint
+
+            self._findings = FindingsOverlay(
+                self.doc, self.view, self.messages, self.player, painted=self._painted
+            )
+        return self._findings
 
     def build_panels(self) -> None:
         """Build the palette, the waveform editor, the inspector and the menus' actions (once),
@@ -654,6 +670,8 @@ class MainWindow(QMainWindow):
         return str(self.doc.path.parent) if self.doc.path else ""
 
     def open_dialog(self) -> None:
+        from PySide6.QtWidgets import QFileDialog  # a dialog's class: imported when one opens
+
         path, _ = QFileDialog.getOpenFileName(
             self, "Open project", self.dialog_folder(), "Haptic timeline (*.htl)"
         )
@@ -679,6 +697,8 @@ class MainWindow(QMainWindow):
         return self.save_to(self.doc.path)
 
     def save_as_dialog(self) -> bool:
+        from PySide6.QtWidgets import QFileDialog
+
         start = str(self.doc.path) if self.doc.path else ""
         path, _ = QFileDialog.getSaveFileName(
             self, "Save project", start, "Haptic timeline (*.htl)"
@@ -693,6 +713,8 @@ class MainWindow(QMainWindow):
         return " ".join(f"*{e}" for e in found)
 
     def import_dialog(self) -> None:
+        from PySide6.QtWidgets import QFileDialog
+
         paths, _ = QFileDialog.getOpenFileNames(
             self, "Import", self.dialog_folder(), f"Importable ({self._extensions('reads')})"
         )
@@ -746,11 +768,15 @@ class MainWindow(QMainWindow):
         self.messages.show_message(f"imported {path.name}" + (f" ({notes})" if notes else ""))
 
     def export_dialog(self) -> None:
+        from PySide6.QtWidgets import QFileDialog
+
         path, _ = QFileDialog.getSaveFileName(
             self, "Export", self.dialog_folder(), f"Exportable ({self._extensions('writes')})"
         )
         if not path:
             return
+        from PySide6.QtWidgets import QDialog
+
         from .export_options import ExportOptions  # not on the way to the first paint
 
         dialog = ExportOptions(self.doc.project, Path(path), self)
@@ -832,6 +858,8 @@ class MainWindow(QMainWindow):
         self.messages.show_message("recovered; save to keep it")
 
     def _ask_unsaved(self) -> QMessageBox.StandardButton:
+        from PySide6.QtWidgets import QMessageBox
+
         buttons = QMessageBox.StandardButton
         return QMessageBox.question(
             self,
@@ -845,6 +873,8 @@ class MainWindow(QMainWindow):
         """With unsaved changes, ask once: save, discard or cancel."""
         if not self.doc.modified:
             return True
+        from PySide6.QtWidgets import QMessageBox
+
         answer = self.ask_unsaved()
         if answer == QMessageBox.StandardButton.Save:
             return self.save()
@@ -856,6 +886,7 @@ class MainWindow(QMainWindow):
             return
         window_state.save(self)
         self.player.close()
-        self.findings.close()
+        if self._findings is not None:
+            self._findings.close()
         self.autosaver.close()
         event.accept()
