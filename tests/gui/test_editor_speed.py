@@ -271,3 +271,23 @@ def test_the_panels_built_after_the_first_paint_take_the_places_it_kept(qtbot):
     assert len(undo) == 1 and win.tile_palette.isVisible() and win.inspector.isVisible()
     qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)  # and it checks, unasked
     assert win.findChildren(FindingsOverlay) == [win.findings] and win.findings.counts["started"]
+
+
+def test_headers_below_the_screen_are_built_later_in_the_tracks_order(qtbot):
+    from timeline.gui.document import Document
+    from timeline.gui.track_header import HeaderColumn
+
+    project = edits.new_project(templates=False)
+    for _ in range(5):
+        project, _ = edits.add_track(project, "drive")
+    doc = Document(project, None)
+    column = HeaderColumn(doc, first_rows=2)
+    qtbot.addWidget(column)
+    ids = [t.id for t in project.tracks]
+    assert list(column.headers) == ids[:2]
+    doc.apply("rename", edits.set_track, ids[4], name="last")  # an edit first builds the rest
+    assert list(column.headers) == ids and column.headers[ids[4]].name.text() == "last"
+    rows = [column.rows.itemAt(i).widget() for i in range(len(ids))]
+    assert rows == [column.headers[i] for i in ids]  # top to bottom in the tracks' order
+    column.build_rest()  # nothing left to build
+    assert len(column.findChildren(type(rows[0]))) == len(ids)

@@ -34,6 +34,7 @@ from .clipboard import ClipClipboard
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .first_paint import after_first_paint
+from .geometry import LANE_HEIGHT
 from .gestures.pivot import PivotGesture
 from .message_bar import MessageBar
 from .player import Player
@@ -85,6 +86,12 @@ def fresh_project(axis: str = "time") -> Project:
     project = edits.new_project(axis)
     project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
     return project
+
+
+def _screen_rows() -> int:
+    """How many lanes the primary screen's height can show at most."""
+    screen = QApplication.primaryScreen()
+    return 1 + (screen.availableGeometry().height() if screen else 2160) // LANE_HEIGHT
 
 
 def _scrolled(widget: QWidget) -> QScrollArea:
@@ -148,7 +155,7 @@ class MainWindow(QMainWindow):
         self._panels: tuple[Palette, WaveformEditor, Inspector] | None = None
         self._findings: FindingsOverlay | None = None
         self._painted = False
-        self._build()
+        self._build(panels_after_paint)
         self.autosaver = Autosaver(self.doc)
         if project is not None and path is not None:
             self.autosaver.on_disk(path)  # the journal starts from the file opened
@@ -176,10 +183,11 @@ class MainWindow(QMainWindow):
 
     # --- layout ----------------------------------------------------------------------------
 
-    def _build(self) -> None:
+    def _build(self, panels_after_paint: bool) -> None:
         doc = self.doc
         self.view = TimelineView(doc)
-        self.headers = HeaderColumn(doc)
+        # after the first paint too: the track headers below the screen's height
+        self.headers = HeaderColumn(doc, _screen_rows() if panels_after_paint else None)
         self.ruler = Ruler(self.view)
         self.ruler.scrubber = Scrubber(self.player, lambda: self.doc.project)
         self.transport = Transport(self.player)
@@ -233,6 +241,7 @@ class MainWindow(QMainWindow):
 
     def _first_painted(self) -> None:
         self._painted = True
+        self.headers.build_rest()
         self.build_panels()
 
     @property
