@@ -23,7 +23,7 @@ from timeline import edits
 from timeline.edits.placement import into_gap
 from timeline.edits.vibration import with_emphasis
 from timeline.errors import HapticTimelineError
-from timeline.files import importing, projectfile
+from timeline.files import projectfile
 from timeline.model import Project
 from timeline.plugins.file_formats import all_formats
 
@@ -38,12 +38,10 @@ from .geometry import LANE_HEIGHT
 from .gestures.pivot import PivotGesture
 from .message_bar import MessageBar
 from .player import Player
-from .recent import recent_files, remember
 from .ripple import remove_rippled
 from .ruler import Ruler
 from .scrub import Scrubber
 from .sound_import import SoundImport
-from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
 from .transport import Transport
@@ -325,6 +323,8 @@ class MainWindow(QMainWindow):
         return action
 
     def _menus(self) -> None:
+        from .step_menus import fill_history, fill_variants  # the menus come after the first paint
+
         file = self.menus["file"]
         self._action(file, "&New", lambda: self.new_project("time"), QKeySequence.StandardKey.New)
         self._action(file, "New &position project", lambda: self.new_project("position"))
@@ -452,6 +452,8 @@ class MainWindow(QMainWindow):
             menu.addAction(action)
 
     def _fill_recent(self) -> None:
+        from .recent import recent_files
+
         self.recent_menu.clear()
         for path in recent_files():
             self.recent_menu.addAction(str(path)).triggered.connect(
@@ -661,6 +663,8 @@ class MainWindow(QMainWindow):
 
     def open_path(self, path: Path) -> bool:
         """Open a project file (after asking about unsaved changes)."""
+        from .recent import remember  # File > Open recent's list: not on the way to the first paint
+
         if not self.confirm_discard():
             return False
         try:
@@ -689,6 +693,8 @@ class MainWindow(QMainWindow):
 
     def save_to(self, path: Path) -> bool:
         """Save atomically; the title loses its unsaved mark."""
+        from .recent import remember
+
         try:
             projectfile.save(self.doc.project, path)
         except (HapticTimelineError, OSError) as exc:
@@ -761,6 +767,8 @@ class MainWindow(QMainWindow):
     def _imported(self, path: Path, imported, track_id: str, at: float) -> None:
         project = self.doc.project
         chosen = track_id if any(t.id == track_id for t in project.tracks) else None
+        from timeline.files import importing  # with the first import, not at start-up
+
         try:
             project, clip_ids = importing.place_checked(
                 project, imported, path.name, at=at, track_id=chosen
