@@ -197,7 +197,7 @@ DEFERRED = (  # heavy libraries, and what only a command needs
     "timeline.gui.findings_overlay", "timeline.gui.rendered_overlay", "timeline.gui.trace_peaks",
     # what a menu, an import or an export needs
     "timeline.gui.step_menus", "timeline.gui.recent", "timeline.files.importing",
-    "timeline.files.exporting",
+    "timeline.files.exporting", "timeline.gui.inspector_marker",
 )
 from PySide6.QtCore import QEvent, QObject, QTimer
 from timeline.gui.app import launch
