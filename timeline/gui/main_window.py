@@ -134,7 +134,8 @@ class MainWindow(QMainWindow):
 
     The first frame shows the lanes (with their headers and ruler), the transport and the menu
     bar; with `panels_after_paint` (the editor's launch) the palette, the waveform editor, the
-    inspector and the menus' actions are built right after it, in the places it kept for them.
+    inspector and the menus' actions are built right after it, in the places it kept for them,
+    with the findings overlay and the track headers below the screen's height.
     Otherwise, and whenever one of those panels is asked for sooner, they are built at once.
     """
 
