@@ -2,8 +2,9 @@
 `haptic-timeline bench editor`, never here): stale limits checks are stopped, closing with checks
 queued says nothing, zoom moves no clip yet places each at start x scale, the waveform editor's
 decimated curve keeps every column's extremes, the first paint loads no scipy.signal (nor
-importlib.metadata, html, the export dialog, the sound analysis panel or the panels built after
-it), and those panels take the places the first frame kept for them."""
+importlib.metadata, html, the export dialog, the sound analysis panel or the panels and the
+findings overlay built after it), and those panels take the places the first frame kept for
+them."""
 
 from __future__ import annotations
 
@@ -196,6 +197,10 @@ DEFERRED = (  # heavy libraries, and what only a command needs
     # the panels built after the first paint, and what only they need
     "timeline.gui.palette", "timeline.gui.inspector", "timeline.gui.waveform_editor",
     "timeline.gui.help", "timeline.gui.thumbnails",
+    "timeline.gui.findings_overlay", "timeline.gui.rendered_overlay", "timeline.gui.trace_peaks",
+    # what a menu, an import or an export needs
+    "timeline.gui.step_menus", "timeline.gui.recent", "timeline.files.importing",
+    "timeline.files.exporting", "timeline.gui.inspector_marker",
 )
 from PySide6.QtCore import QEvent, QObject, QTimer
 from timeline.gui.app import launch
@@ -244,6 +249,7 @@ def _places(win) -> list[tuple[int, int, int, int]]:  # noqa: ANN001
 
 def test_the_panels_built_after_the_first_paint_take_the_places_it_kept(qtbot):
     from timeline.files import projectfile
+    from timeline.gui.findings_overlay import FindingsOverlay
     from timeline.gui.first_paint import after_first_paint
     from timeline.gui.inspector import Inspector
     from timeline.gui.main_window import MainWindow
@@ -257,13 +263,37 @@ def test_the_panels_built_after_the_first_paint_take_the_places_it_kept(qtbot):
     def at_first_paint() -> None:  # runs before the window's own work after that paint
         first.update(places=_places(win), panels=win.findChildren(Palette))
         first.update(menu_empty=win.menus["edit"].isEmpty())
+        first.update(overlays=win.findChildren(FindingsOverlay))
 
     after_first_paint(win.view.viewport(), at_first_paint)
     win.resize(800, 600)  # small: the panels' minimum sizes bind
     win.show()
     qtbot.waitUntil(lambda: bool(win.findChildren(Inspector)), timeout=10_000)
     assert first["panels"] == [] and first["menu_empty"] and first["places"]
+    assert first["overlays"] == []  # the findings overlay too is built after the first paint
     assert _places(win) == first["places"]  # nothing moved or changed size
     assert len(win.findChildren(Palette)) == len(win.findChildren(WaveformEditor)) == 1
     undo = [a for a in win.menus["edit"].actions() if a.shortcut().toString() == "Ctrl+Z"]
     assert len(undo) == 1 and win.tile_palette.isVisible() and win.inspector.isVisible()
+    qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)  # and it checks, unasked
+    assert win.findChildren(FindingsOverlay) == [win.findings] and win.findings.counts["started"]
+
+
+def test_headers_below_the_screen_are_built_later_in_the_tracks_order(qtbot):
+    from timeline.gui.document import Document
+    from timeline.gui.track_header import HeaderColumn
+
+    project = edits.new_project(templates=False)
+    for _ in range(5):
+        project, _ = edits.add_track(project, "drive")
+    doc = Document(project, None)
+    column = HeaderColumn(doc, first_rows=2)
+    qtbot.addWidget(column)
+    ids = [t.id for t in project.tracks]
+    assert list(column.headers) == ids[:2]
+    doc.apply("rename", edits.set_track, ids[4], name="last")  # an edit first builds the rest
+    assert list(column.headers) == ids and column.headers[ids[4]].name.text() == "last"
+    rows = [column.rows.itemAt(i).widget() for i in range(len(ids))]
+    assert rows == [column.headers[i] for i in ids]  # top to bottom in the tracks' order
+    column.build_rest()  # nothing left to build
+    assert len(column.findChildren(type(rows[0]))) == len(ids)

@@ -157,28 +157,19 @@ def _least_median(values: list[float]) -> str:
 def _child_launch(path: str, home: str) -> None:
     """Open the editor as `haptic-timeline edit` does; print when its first paint is done."""
     os.environ["XDG_DATA_HOME"] = home  # no autosave of the user's is offered
-    from PySide6.QtCore import QEvent, QObject, QTimer
-
-    from timeline.gui.app import launch
+    from timeline.gui.app import launch  # the first import, as in `haptic-timeline edit`
+    from timeline.gui.first_paint import after_first_paint
 
     app, window = launch(path)
 
-    def painted() -> None:
+    def painted() -> None:  # right after the lanes' first paint
         loaded = [m for m in HEAVY if m in sys.modules]
         done = {"painted": time.perf_counter(), "cpu": time.process_time(), "loaded": loaded}
         print(json.dumps(done), flush=True)
         window.close()
         app.quit()
 
-    class FirstPaint(QObject):
-        def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802
-            if event.type() == QEvent.Type.Paint:
-                watched.removeEventFilter(self)
-                QTimer.singleShot(0, painted)  # after this paint has been done
-            return False
-
-    first = FirstPaint()
-    window.view.viewport().installEventFilter(first)
+    after_first_paint(window.view.viewport(), painted)
     app.exec()
 
 

@@ -27,10 +27,10 @@ def launch(path: str | None = None) -> tuple[QApplication, MainWindow]:
     """The application and its window shown on a project (painted once the event loop runs).
 
     The first frame shows the lanes, the transport and the menu bar; the palette, the waveform
-    editor, the inspector and the menus' actions are built right after it (MainWindow's
-    `panels_after_paint`). Nothing on the way to the first paint loads scipy.signal or numba:
-    the findings check starts after it (findings_overlay) and the sound analysis with the first
-    sound converted.
+    editor, the inspector, the menus' actions, the findings overlay and the track headers below
+    the screen's height are built right after it (MainWindow's `panels_after_paint`). Nothing
+    on the way to the first paint loads scipy.signal or numba: the findings check starts after
+    it (findings_overlay) and the sound analysis with the first sound converted.
     """
     from PySide6.QtWidgets import QApplication
 

@@ -18,7 +18,6 @@ from typing import Any
 from PySide6.QtCore import QObject, Signal
 
 from timeline.errors import HapticTimelineError
-from timeline.files import exporting, importing
 from timeline.files.atomic import file_mode
 from timeline.model import Project
 
@@ -105,6 +104,8 @@ class FileJob(QObject):
 
 def import_job(path: Path) -> FileJob:
     """Read a file (the window places the result on a track when done)."""
+    from timeline.files import importing  # with the first import, not at start-up
+
     return FileJob(
         f"Import of {path.name}", lambda progress: importing.read_file(path, progress=progress)
     )
@@ -116,6 +117,7 @@ def export_job(project: Project, path: Path, **options: Any) -> FileJob:
     `options` are export_project's (the CLI's `--rate` and `--fixed-point`). The file gets the
     permissions the CLI's export gives it: an existing target's, else 0666 less the umask.
     """
+    from timeline.files import exporting  # with the first export, not at start-up
 
     def work(progress: Callable[[float], None]) -> Path:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)

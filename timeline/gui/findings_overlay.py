@@ -214,12 +214,13 @@ class FindingsOverlay(QObject):
     One check runs at a time: an edit makes the running check stale and stops it at its next
     step (limits.check's `interrupt`), a queued one is dropped, and a drag starts no check until
     the mouse lets go, so a drag with pauses leaves no pile of checks behind it. The first check
-    waits for the window's first paint.
+    waits for the window's first paint (`painted`: made after it, the overlay starts checking at
+    once).
     """
 
     ready = Signal(object, int)  # Checked or HapticTimelineError, version
 
-    def __init__(self, doc, view, messages, player) -> None:  # noqa: ANN001 - GUI objects
+    def __init__(self, doc, view, messages, player, painted: bool = False) -> None:  # noqa: ANN001
         super().__init__(view)
         self.doc, self.view, self.messages, self.player = doc, view, messages, player
         self.report: Report | None = None
@@ -249,7 +250,10 @@ class FindingsOverlay(QObject):
         doc.changed.connect(lambda _project: self.schedule())
         view.gesture_finished.connect(self._let_go)
         view.scene().sceneRectChanged.connect(lambda _rect: self._redraw())  # zoom, new lanes
-        view.viewport().installEventFilter(self)  # the first check after the first paint
+        if painted:
+            self.schedule()
+        else:
+            view.viewport().installEventFilter(self)  # the first check after the first paint
 
     @property
     def shades(self) -> list[Shade]:

@@ -10,13 +10,10 @@ from PySide6.QtCore import QSize, Qt
 from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence, QPalette
 from PySide6.QtWidgets import (
     QApplication,
-    QDialog,
-    QFileDialog,
     QFrame,
     QGridLayout,
     QMainWindow,
     QMenu,
-    QMessageBox,
     QScrollArea,
     QSplitter,
     QWidget,
@@ -26,7 +23,7 @@ from timeline import edits
 from timeline.edits.placement import into_gap
 from timeline.edits.vibration import with_emphasis
 from timeline.errors import HapticTimelineError
-from timeline.files import importing, projectfile
+from timeline.files import projectfile
 from timeline.model import Project
 from timeline.plugins.file_formats import all_formats
 
@@ -36,22 +33,23 @@ from .autosave import Autosaver, Recoverable, recoverable
 from .clipboard import ClipClipboard
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
-from .findings_overlay import FindingsOverlay
 from .first_paint import after_first_paint
+from .geometry import LANE_HEIGHT
 from .gestures.pivot import PivotGesture
 from .message_bar import MessageBar
 from .player import Player
-from .recent import recent_files, remember
 from .ripple import remove_rippled
 from .ruler import Ruler
 from .scrub import Scrubber
 from .sound_import import SoundImport
-from .step_menus import fill_history, fill_variants
 from .timeline_view import ZOOM_STEP, TimelineView
 from .track_header import HeaderColumn
 from .transport import Transport
 
 if TYPE_CHECKING:
+    from PySide6.QtWidgets import QMessageBox
+
+    from .findings_overlay import FindingsOverlay
     from .help import HelpMenu
     from .inspector import Inspector
     from .palette import Palette
@@ -86,6 +84,12 @@ def fresh_project(axis: str = "time") -> Project:
     project = edits.new_project(axis)
     project, _ = edits.add_track(project, "drive" if axis == "time" else "torque")
     return project
+
+
+def _screen_rows() -> int:
+    """How many lanes the primary screen's height can show at most."""
+    screen = QApplication.primaryScreen()
+    return 1 + (screen.availableGeometry().height() if screen else 2160) // LANE_HEIGHT
 
 
 def _scrolled(widget: QWidget) -> QScrollArea:
@@ -130,7 +134,8 @@ class MainWindow(QMainWindow):
 
     The first frame shows the lanes (with their headers and ruler), the transport and the menu
     bar; with `panels_after_paint` (the editor's launch) the palette, the waveform editor, the
-    inspector and the menus' actions are built right after it, in the places it kept for them.
+    inspector and the menus' actions are built right after it, in the places it kept for them,
+    with the findings overlay and the track headers below the screen's height.
     Otherwise, and whenever one of those panels is asked for sooner, they are built at once.
     """
 
@@ -147,12 +152,13 @@ class MainWindow(QMainWindow):
         self.ask_unsaved: Callable[[], QMessageBox.StandardButton] = self._ask_unsaved
         self.clip_actions: list[QAction] = []
         self._panels: tuple[Palette, WaveformEditor, Inspector] | None = None
-        self._build()
+        self._findings: FindingsOverlay | None = None
+        self._painted = False
+        self._build(panels_after_paint)
         self.autosaver = Autosaver(self.doc)
         if project is not None and path is not None:
             self.autosaver.on_disk(path)  # the journal starts from the file opened
         self.autosaver.failed.connect(lambda text: self.messages.show_message(text, "error"))
-        self.findings = FindingsOverlay(self.doc, self.view, self.messages, self.player)
         if not panels_after_paint:
             self.build_panels()
         self.transport.device.currentTextChanged.connect(lambda _: self.findings.schedule())
@@ -172,14 +178,15 @@ class MainWindow(QMainWindow):
         self.resize(*DEFAULT_SIZE)
         self.restored = window_state.restore(self)  # size, splitters, docks and hand
         if panels_after_paint:
-            after_first_paint(self.view.viewport(), self.build_panels)
+            after_first_paint(self.view.viewport(), self._first_painted)
 
     # --- layout ----------------------------------------------------------------------------
 
-    def _build(self) -> None:
+    def _build(self, panels_after_paint: bool) -> None:
         doc = self.doc
         self.view = TimelineView(doc)
-        self.headers = HeaderColumn(doc)
+        # after the first paint too: the track headers below the screen's height
+        self.headers = HeaderColumn(doc, _screen_rows() if panels_after_paint else None)
         self.ruler = Ruler(self.view)
         self.ruler.scrubber = Scrubber(self.player, lambda: self.doc.project)
         self.transport = Transport(self.player)
@@ -230,6 +237,23 @@ class MainWindow(QMainWindow):
         self.statusBar().setSizeGripEnabled(False)
         self.menus = {key: self.menuBar().addMenu(title) for key, title in MENUS.items()}
         self.sound_import = SoundImport(self)  # its dock is restored with the window's state
+
+    def _first_painted(self) -> None:
+        self._painted = True
+        self.headers.build_rest()
+        self.build_panels()
+
+    @property
+    def findings(self) -> FindingsOverlay:
+        """The findings check and its shading (built now if it was not yet: after the first
+        paint, with the panels, when the window was made with `panels_after_paint`)."""
+        if self._findings is None:
+            from .findings_overlay import FindingsOverlay  # not on the way to the first paint
+
+            self._findings = FindingsOverlay(
+                self.doc, self.view, self.messages, self.player, painted=self._painted
+            )
+        return self._findings
 
     def build_panels(self) -> None:
         """Build the palette, the waveform editor, the inspector and the menus' actions (once),
@@ -300,6 +324,8 @@ class MainWindow(QMainWindow):
         return action
 
     def _menus(self) -> None:
+        from .step_menus import fill_history, fill_variants  # the menus come after the first paint
+
         file = self.menus["file"]
         self._action(file, "&New", lambda: self.new_project("time"), QKeySequence.StandardKey.New)
         self._action(file, "New &position project", lambda: self.new_project("position"))
@@ -427,6 +453,8 @@ class MainWindow(QMainWindow):
             menu.addAction(action)
 
     def _fill_recent(self) -> None:
+        from .recent import recent_files
+
         self.recent_menu.clear()
         for path in recent_files():
             self.recent_menu.addAction(str(path)).triggered.connect(
@@ -636,6 +664,8 @@ class MainWindow(QMainWindow):
 
     def open_path(self, path: Path) -> bool:
         """Open a project file (after asking about unsaved changes)."""
+        from .recent import remember  # File > Open recent's list: not on the way to the first paint
+
         if not self.confirm_discard():
             return False
         try:
@@ -654,6 +684,8 @@ class MainWindow(QMainWindow):
         return str(self.doc.path.parent) if self.doc.path else ""
 
     def open_dialog(self) -> None:
+        from PySide6.QtWidgets import QFileDialog  # a dialog's class: imported when one opens
+
         path, _ = QFileDialog.getOpenFileName(
             self, "Open project", self.dialog_folder(), "Haptic timeline (*.htl)"
         )
@@ -662,6 +694,8 @@ class MainWindow(QMainWindow):
 
     def save_to(self, path: Path) -> bool:
         """Save atomically; the title loses its unsaved mark."""
+        from .recent import remember
+
         try:
             projectfile.save(self.doc.project, path)
         except (HapticTimelineError, OSError) as exc:
@@ -679,6 +713,8 @@ class MainWindow(QMainWindow):
         return self.save_to(self.doc.path)
 
     def save_as_dialog(self) -> bool:
+        from PySide6.QtWidgets import QFileDialog
+
         start = str(self.doc.path) if self.doc.path else ""
         path, _ = QFileDialog.getSaveFileName(
             self, "Save project", start, "Haptic timeline (*.htl)"
@@ -693,6 +729,8 @@ class MainWindow(QMainWindow):
         return " ".join(f"*{e}" for e in found)
 
     def import_dialog(self) -> None:
+        from PySide6.QtWidgets import QFileDialog
+
         paths, _ = QFileDialog.getOpenFileNames(
             self, "Import", self.dialog_folder(), f"Importable ({self._extensions('reads')})"
         )
@@ -730,6 +768,8 @@ class MainWindow(QMainWindow):
     def _imported(self, path: Path, imported, track_id: str, at: float) -> None:
         project = self.doc.project
         chosen = track_id if any(t.id == track_id for t in project.tracks) else None
+        from timeline.files import importing  # with the first import, not at start-up
+
         try:
             project, clip_ids = importing.place_checked(
                 project, imported, path.name, at=at, track_id=chosen
@@ -746,11 +786,15 @@ class MainWindow(QMainWindow):
         self.messages.show_message(f"imported {path.name}" + (f" ({notes})" if notes else ""))
 
     def export_dialog(self) -> None:
+        from PySide6.QtWidgets import QFileDialog
+
         path, _ = QFileDialog.getSaveFileName(
             self, "Export", self.dialog_folder(), f"Exportable ({self._extensions('writes')})"
         )
         if not path:
             return
+        from PySide6.QtWidgets import QDialog
+
         from .export_options import ExportOptions  # not on the way to the first paint
 
         dialog = ExportOptions(self.doc.project, Path(path), self)
@@ -833,6 +877,8 @@ class MainWindow(QMainWindow):
         self.messages.show_message("recovered; save to keep it")
 
     def _ask_unsaved(self) -> QMessageBox.StandardButton:
+        from PySide6.QtWidgets import QMessageBox
+
         buttons = QMessageBox.StandardButton
         return QMessageBox.question(
             self,
@@ -846,6 +892,8 @@ class MainWindow(QMainWindow):
         """With unsaved changes, ask once: save, discard or cancel."""
         if not self.doc.modified:
             return True
+        from PySide6.QtWidgets import QMessageBox
+
         answer = self.ask_unsaved()
         if answer == QMessageBox.StandardButton.Save:
             return self.save()
@@ -857,6 +905,7 @@ class MainWindow(QMainWindow):
             return
         window_state.save(self)
         self.player.close()
-        self.findings.close()
+        if self._findings is not None:
+            self._findings.close()
         self.autosaver.close()
         event.accept()

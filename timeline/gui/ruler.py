@@ -19,7 +19,6 @@ from timeline.edits import markers
 from timeline.model import Project
 
 from .geometry import axis_text, display_factor, display_unit, format_tick, nice_step
-from .inspector_marker import move_marker_tracked
 from .scrub import Scrubber
 from .timeline_view import TimelineView
 
@@ -161,6 +160,8 @@ class Ruler(QWidget):
                 self.scrubber.move(u)
             return
         if self._marker is not None:
+            from .inspector_marker import move_marker_tracked  # the marker panel's, loaded later
+
             index = self.doc.apply(
                 "move marker", move_marker_tracked, self._marker, u,
                 base=self._base, merge_key=self._key,

@@ -27,7 +27,6 @@ from PySide6.QtWidgets import (
     QCheckBox,
     QDockWidget,
     QDoubleSpinBox,
-    QFileDialog,
     QFormLayout,
     QLabel,
     QMenu,
@@ -273,6 +272,8 @@ class SoundImport(QObject):
         return bool(held & DROP_MODIFIER)
 
     def import_dialog(self) -> None:
+        from PySide6.QtWidgets import QFileDialog  # a dialog's class: imported when one opens
+
         self.dock.show()
         paths, _ = QFileDialog.getOpenFileNames(
             self.window, "Import sound as haptic", self.window.dialog_folder(),

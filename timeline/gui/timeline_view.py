@@ -6,7 +6,7 @@ from pathlib import Path
 
 from PySide6.QtCore import QPoint, QPointF, Qt, Signal
 from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QWheelEvent
-from PySide6.QtWidgets import QGraphicsView, QLabel, QMenu
+from PySide6.QtWidgets import QGraphicsView, QLabel, QMenu, QWidget
 
 from timeline.edits.vibration import with_emphasis
 from timeline.model import Track
@@ -66,6 +66,9 @@ class TimelineView(QGraphicsView):
         self.drop: PaletteDrop | None = None
         self.menu: QMenu | None = None  # the last context menu shown
         self.menu_at = QPointF()  # the scene point it was asked for at
+        # a viewport made in Python, as Qt's own would be: PySide6 knows its type, where one made
+        # in C++ makes it look through every widget class (and create their enums, ~20 ms) first
+        self.setViewport(QWidget())
         self.readout = QLabel(self.viewport())
         self.readout.setStyleSheet(
             "background: rgba(255, 255, 230, 235); border: 1px solid #999; padding: 1px 4px;"

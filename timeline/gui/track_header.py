@@ -36,8 +36,8 @@ DRAG_PX = 4  # a header moved less than this was clicked, not dragged
 class TrackHeader(QFrame):
     """The header of one track; every change is one edit through the document."""
 
-    def __init__(self, doc: Document, track: Track) -> None:
-        super().__init__()
+    def __init__(self, doc: Document, track: Track, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
         self.doc = doc
         self.track_id = track.id
         kind = track_kind(track.kind)
@@ -166,9 +166,13 @@ class HeaderColumn(QScrollArea):
 
     track_added = Signal(str)
 
-    def __init__(self, doc: Document) -> None:
+    def __init__(self, doc: Document, first_rows: int | None = None) -> None:
+        """With `first_rows`, only that many headers (those a screen shows) are built with the
+        column; the others wait for `build_rest` (the window calls it after its first paint)."""
         super().__init__()
         self.doc = doc
+        self._first_rows = first_rows
+        self._rest: list[Track] = []  # tracks whose headers `build_rest` builds
         self.setFixedWidth(WIDTH)
         self.setWidgetResizable(True)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
@@ -232,14 +236,28 @@ class HeaderColumn(QScrollArea):
 
     def refresh(self) -> None:
         """Rebuild headers when tracks come or go; otherwise update them in place."""
+        self.build_rest()
         tracks = self.doc.project.tracks
         if [t.id for t in tracks] != list(self.headers):
             for header in self.headers.values():
                 header.deleteLater()
             self.headers = {}
-            for index, track in enumerate(tracks):
-                header = self.headers[track.id] = TrackHeader(self.doc, track)
-                self.rows.insertWidget(index, header)
+            first, self._first_rows = self._first_rows or len(tracks), None  # the first build's
+            for track in tracks[:first]:
+                self._add_header(track)
+            self._rest = list(tracks[first:])
         else:
             for track in tracks:
                 self.headers[track.id].show_track(track)  # skips a track it already shows
+
+    def build_rest(self) -> None:
+        """Build the headers the column's first build left for later (none if it left none)."""
+        rest, self._rest = self._rest, []
+        for track in rest:
+            self._add_header(track)
+
+    def _add_header(self, track: Track) -> None:
+        # made in the column (not moved into it): a header moved in has its style sheet, its
+        # fields and their events done again, 3 ms a header
+        header = self.headers[track.id] = TrackHeader(self.doc, track, self.widget())
+        self.rows.insertWidget(len(self.headers) - 1, header)
