@@ -201,6 +201,8 @@ DEFERRED = (  # heavy libraries, and what only a command needs
     # what a menu, an import or an export needs
     "timeline.gui.step_menus", "timeline.gui.recent", "timeline.files.importing",
     "timeline.files.exporting", "timeline.gui.inspector_marker",
+    # the play process's module, loaded when the warm-up after the first paint starts it
+    "timeline.gui.play_process", "multiprocessing",
 )
 from PySide6.QtCore import QEvent, QObject, QTimer
 from timeline.gui.app import launch

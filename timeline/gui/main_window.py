@@ -111,6 +111,7 @@ def _take_place(splitter: QSplitter, index: int, panel: QWidget) -> None:
     """
     sizes = splitter.sizes()
     slot = splitter.widget(index)
+    assert slot is not None, "a panel's place is held from the window's start"
     panel.setMinimumSize(slot.minimumSize())
     splitter.insertWidget(index, panel)
     slot.hide()

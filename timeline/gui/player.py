@@ -33,6 +33,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING
 
 import numpy as np
 from PySide6.QtCore import QCoreApplication, QEvent, QObject, QTimer, Signal
@@ -47,7 +48,9 @@ from timeline.rendering.sound_out import SoundOut
 
 from .job_errors import unexpected
 from .live_stream import CHUNK_SECONDS, LiveStream, LiveTables
-from .play_process import ChildDevice, PlayProcess, RemoteStream
+
+if TYPE_CHECKING:  # the play process's module (and multiprocessing) loads with its first start
+    from .play_process import PlayProcess, RemoteStream
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
 LATE_NOTICE_SECONDS = 1.0  # while playing, late blocks are named at most this often
@@ -102,6 +105,8 @@ class _Shared:
                 cls.process.close()
                 cls.process = None
             if cls.process is None:
+                from .play_process import PlayProcess
+
                 cls.process = PlayProcess(device_name)
                 atexit.register(cls.process.close)
             return cls.process
@@ -186,6 +191,8 @@ class Player(QObject):
         with self._opening:
             if self.device is None:
                 if self.device_name in CHILD_ONLY:
+                    from .play_process import ChildDevice
+
                     opened: Device = ChildDevice(_Shared.get(self.device_name))
                 else:
                     opened = open_device(self.device_name)
@@ -371,6 +378,8 @@ class Player(QObject):
         asked: float,
     ) -> RemoteStream:
         """Play the stream in the play process; its handle here."""
+        from .play_process import RemoteStream
+
         process = _Shared.get(self.device_name)
         owner = _Shared.owner
         if owner is not None and owner is not self:
@@ -383,6 +392,8 @@ class Player(QObject):
 
     def _heard(self, messages: list[tuple]) -> None:
         """Take in what the play process said: telemetry, where it is, late counts, the end."""
+        from .play_process import RemoteStream  # loaded: the play process is speaking
+
         stream = self.stream
         for kind, *args in messages:
             if kind == "part":

@@ -159,7 +159,7 @@ class TimelineScene(QGraphicsScene):
         if before is not None and same_tiles and before.lane == lane and before.view == view:
             unchanged = before.track.clips_by_id
             tiles = dict(before.tiles)
-        if unchanged:
+        if unchanged and before is not None:
             shown = self._move_items(project, track, before, tiles, colour)
             if shown is not None:
                 return shown
