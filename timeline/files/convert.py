@@ -72,8 +72,8 @@ def _check_complete(path: Path) -> None:
 def design_of_analysis(analysis: SoundAnalysis) -> VibrationDesign:
     """The analysis as a vibration design (breakpoints in seconds, values 0..1)."""
     return VibrationDesign(
-        amplitude=tuple((float(t), float(v)) for t, v in analysis.amplitude),
-        frequency=tuple((float(t), float(v)) for t, v in analysis.frequency),
+        amplitude=analysis.amplitude,  # (n, 2) arrays: held as arrays, no object per point
+        frequency=analysis.frequency,
         emphasis=tuple(Emphasis(float(t), float(a), float(f)) for t, a, f in analysis.emphasis),
         duration=float(analysis.duration),
     )
