@@ -18,8 +18,8 @@ an emphasis instead: its ducking).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
 from typing import Any, overload
 
 import numpy as np
@@ -130,21 +130,18 @@ class Breakpoints(Sequence[tuple[float, float]]):
 
 
 def breakpoints(points: Any, what: str = "the") -> Breakpoints:
-    """Checked breakpoints from (t, v) pairs, an (n, 2) array or Breakpoints (kept as they are):
-    times finite, >= 0 and in order, values in 0..1; else an EditError naming the first bad one."""
+    """Checked breakpoints from (t, v) pairs, an (n, 2) array or Breakpoints (checked, kept as
+    they are): times finite, >= 0 and in order, values in 0..1; else an EditError naming the
+    first bad one."""
     if isinstance(points, Breakpoints):
-        return points
-    if isinstance(points, np.ndarray):
-        rows = points
+        t, v = points.times, points.values
     else:
-        rows = tuple(points)
-        if not rows:
-            return Breakpoints(np.empty(0), np.empty(0))
-    try:
-        array = np.array(rows, dtype=np.float64).reshape(len(rows), 2)
-    except (TypeError, ValueError):
-        raise EditError(f"{what} breakpoints must be (time, value) pairs of numbers") from None
-    t, v = array[:, 0], array[:, 1]
+        rows = points if isinstance(points, np.ndarray) else tuple(points)
+        try:
+            array = np.array(rows, dtype=np.float64).reshape(len(rows), 2)
+        except (TypeError, ValueError):
+            raise EditError(f"{what} breakpoints must be (time, value) pairs of numbers") from None
+        t, v = array[:, 0], array[:, 1]
     bad_time = ~(np.isfinite(t) & (t >= 0.0))
     if bad_time.any():
         k = int(np.flatnonzero(bad_time)[0])
@@ -157,7 +154,7 @@ def breakpoints(points: Any, what: str = "the") -> Breakpoints:
     if bad_value.any():
         k = int(np.flatnonzero(bad_value)[0])
         raise EditError(f"{what} breakpoint {k + 1}'s value must be between 0 and 1, not {v[k]!r}")
-    return Breakpoints(t, v)
+    return points if isinstance(points, Breakpoints) else Breakpoints(t, v)
 
 
 @dataclass(frozen=True)
