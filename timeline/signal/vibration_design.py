@@ -92,7 +92,7 @@ class Breakpoints(Sequence[tuple[float, float]]):
     def __getitem__(self, k: int | slice) -> tuple[float, float] | Breakpoints:
         if isinstance(k, slice):
             return Breakpoints(self.times[k], self.values[k])
-        return (float(self.times[k]), float(self.values[k]))
+        return (self.times.item(k), self.values.item(k))
 
     def __iter__(self) -> Iterator[tuple[float, float]]:
         for first in range(0, len(self.times), _ITER_CHUNK):
