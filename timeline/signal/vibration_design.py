@@ -200,7 +200,8 @@ def emphasis_pulse(d: np.ndarray, amplitude: float, frequency: float) -> np.ndar
 
 @dataclass(frozen=True)
 class VibrationDesign:
-    """Amplitude and frequency breakpoints (seconds, 0..1), emphasis, and the design's length."""
+    """Amplitude and frequency breakpoints (seconds, 0..1; held as `Breakpoints`, float64 arrays,
+    whatever they are given as), emphasis, and the design's length."""
 
     amplitude: Breakpoints
     frequency: Breakpoints
