@@ -30,8 +30,9 @@ The shared interface for .haptic/AHAP import and export and for `convert`:
 from __future__ import annotations
 
 from bisect import bisect_left, bisect_right
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 
@@ -342,6 +343,14 @@ def _clip_design(clip: Clip, tile: VibrationTile, factor: float) -> VibrationDes
     ends = [float(p.times[-1]) for p in (amp, freq) if len(p)]  # times ascend
     end = max([m.time(hi)] + ends + [e.time for e in accents])
     return VibrationDesign(amp, freq, tuple(accents), end)
+
+
+@overload
+def _cut(points: Breakpoints, lo: float, hi: float, outside: float | None) -> Breakpoints: ...
+@overload
+def _cut(
+    points: Sequence[tuple[float, float]], lo: float, hi: float, outside: float | None
+) -> list[tuple[float, float]]: ...
 
 
 def _cut(points, lo: float, hi: float, outside: float | None):

@@ -18,7 +18,7 @@ an emphasis instead: its ducking).
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, overload
 
@@ -198,7 +198,7 @@ def emphasis_pulse(d: np.ndarray, amplitude: float, frequency: float) -> np.ndar
     return np.where(inside, amplitude * fade * np.sin(2.0 * np.pi * hz * d), 0.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class VibrationDesign:
     """Amplitude and frequency breakpoints (seconds, 0..1; held as `Breakpoints`, float64 arrays,
     whatever they are given as), emphasis, and the design's length."""
@@ -208,25 +208,30 @@ class VibrationDesign:
     emphasis: tuple[Emphasis, ...]
     duration: float
 
-    def __post_init__(self) -> None:
-        amplitude = breakpoints(self.amplitude, "amplitude")
-        frequency = breakpoints(self.frequency, "frequency")
-        given: tuple[Any, ...] = self.emphasis  # (time, amplitude, frequency) tuples are welcome
-        emphasis = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in given)
-        emphasis = tuple(sorted(emphasis, key=lambda e: e.time))
-        duration = float(self.duration)
-        if not (math.isfinite(duration) and duration > 0.0):
-            raise EditError(f"a vibration design must last a positive time, not {duration!r} s")
-        ends = [float(p.times[-1]) for p in (amplitude, frequency) if len(p)]  # times ascend
-        latest = max(ends + [e.time for e in emphasis], default=0.0)
-        if latest > duration:
-            raise EditError(
-                f"a vibration design of {duration:g} s has a breakpoint at {latest:g} s"
-            )
-        object.__setattr__(self, "amplitude", amplitude)
-        object.__setattr__(self, "frequency", frequency)
-        object.__setattr__(self, "emphasis", emphasis)
-        object.__setattr__(self, "duration", duration)
+    def __init__(
+        self,
+        amplitude: Breakpoints | np.ndarray | Iterable[tuple[float, float]],
+        frequency: Breakpoints | np.ndarray | Iterable[tuple[float, float]],
+        emphasis: Iterable[Emphasis | tuple[float, float, float]],
+        duration: float,
+    ) -> None:
+        """Checked breakpoints (`breakpoints`), emphasis in time order ((time, amplitude,
+        frequency) tuples are welcome), and a positive duration reaching past them all."""
+        checked_amplitude = breakpoints(amplitude, "amplitude")
+        checked_frequency = breakpoints(frequency, "frequency")
+        accents = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in emphasis)
+        accents = tuple(sorted(accents, key=lambda e: e.time))
+        length = float(duration)
+        if not (math.isfinite(length) and length > 0.0):
+            raise EditError(f"a vibration design must last a positive time, not {length!r} s")
+        ends = [float(p.times[-1]) for p in (checked_amplitude, checked_frequency) if len(p)]
+        latest = max(ends + [e.time for e in accents], default=0.0)  # times ascend
+        if latest > length:
+            raise EditError(f"a vibration design of {length:g} s has a breakpoint at {latest:g} s")
+        object.__setattr__(self, "amplitude", checked_amplitude)
+        object.__setattr__(self, "frequency", checked_frequency)
+        object.__setattr__(self, "emphasis", accents)
+        object.__setattr__(self, "duration", length)
 
     @property
     def extent(self) -> float:
