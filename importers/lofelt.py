@@ -327,9 +327,9 @@ def _with_emphasis(
                 yield from given(bp, original)
             held = []
             free.clear()
-            while i < n and amplitude[i][0] <= e.time:
-                bp = {"time": amplitude[i][0], "amplitude": amplitude[i][1]}
-                if amplitude[i][0] == e.time:
+            while i < n and (point := amplitude[i])[0] <= e.time:
+                bp = {"time": point[0], "amplitude": point[1]}
+                if point[0] == e.time:
                     free.append(bp)
                     held.append((bp, i))
                 else:
@@ -349,8 +349,8 @@ def _with_emphasis(
         bp["emphasis"] = {"amplitude": max(e.amplitude, bp["amplitude"]), "frequency": e.frequency}
     for bp, original in held:
         yield from given(bp, original)
-    for j in range(i, n):
-        yield from given({"time": amplitude[j][0], "amplitude": amplitude[j][1]}, j)
+    for j, (t, v) in enumerate(amplitude[i:], i):  # Breakpoints iterate a chunk at a time
+        yield from given({"time": t, "amplitude": v}, j)
 
 
 def _level_for(

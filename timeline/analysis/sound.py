@@ -101,6 +101,29 @@ class _AmplitudeEvents:
         return picked / self.rate, np.minimum(envelope[picked - 1 - lo], 1.0)
 
 
+class _FrameStore:
+    """The spectrum frames' times and features, written into arrays sized once for the whole
+    sound (pages never reached are never resident): hours of frames are held once, not as an
+    array per block and then their concatenation."""
+
+    def __init__(self, capacity: int) -> None:
+        self.times = np.empty(capacity)
+        self.features = Features(*(np.empty(capacity, np.float32) for _ in range(3)))
+        self.count = 0
+
+    def add(self, times: np.ndarray, features: Features) -> None:
+        lo, hi = self.count, self.count + len(times)
+        self.times[lo:hi] = times
+        for name in ("flux", "strength", "power"):  # cast to float32 as they are written
+            getattr(self.features, name)[lo:hi] = getattr(features, name)
+        self.count = hi
+
+    def frames(self) -> Frames:
+        n = self.count
+        f = self.features
+        return Frames(self.times[:n], Features(f.flux[:n], f.strength[:n], f.power[:n]))
+
+
 def analyse_blocks(
     blocks: Iterable[np.ndarray],
     rate: float,
@@ -136,12 +159,10 @@ def analyse_blocks(
         settings.frequency_points_per_second, settings.minimum_score, settings.tolerance,
         settings.slack,
     )  # fmt: skip
-    frame_t: list[np.ndarray] = []
-    frame_f: list[Features] = []
+    store = _FrameStore((length + spectrum.size) // spectrum.hop + 2)  # at most one a hop
 
     def spectral(times: np.ndarray, centroid: np.ndarray, features: Features) -> None:
-        frame_t.append(times)
-        frame_f.append(Features.join([features]))
+        store.add(times, features)
         ahead = times >= 0.0
         freq.add(times[ahead], frequency_values(centroid[ahead], rate, settings))
 
@@ -161,8 +182,9 @@ def analyse_blocks(
     if len(rest):
         amp.add(*envelope(rest))
     spectral(*spectrum.finish())
-    frames = Frames(np.concatenate(frame_t), Features.join(frame_f))
-    return _assemble(amp.finish(), freq.finish(), frames, length / rate, rate, level, settings)
+    return _assemble(
+        amp.finish(), freq.finish(), store.frames(), length / rate, rate, level, settings
+    )
 
 
 def _assemble(

@@ -97,14 +97,6 @@ class Features:
     def empty(cls) -> Features:
         return cls(np.empty(0, np.float32), np.empty(0, np.float32), np.empty(0, np.float32))
 
-    @classmethod
-    def join(cls, parts: list[Features]) -> Features:
-        """The features of consecutive frames, as one (float32, to keep hours of frames small)."""
-        if not parts:
-            return cls.empty()
-        return cls(*(np.concatenate([getattr(p, name) for p in parts]).astype(np.float32)
-                     for name in ("flux", "strength", "power")))  # fmt: skip
-
 
 @dataclass
 class SpectrumFrames:

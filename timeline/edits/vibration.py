@@ -30,8 +30,9 @@ The shared interface for .haptic/AHAP import and export and for `convert`:
 from __future__ import annotations
 
 from bisect import bisect_left, bisect_right
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 
@@ -47,8 +48,10 @@ from timeline.signal.vibration_design import (
     DEFAULT_FREQUENCY,
     F_MAX,
     F_MIN,
+    Breakpoints,
     Emphasis,
     VibrationDesign,
+    breakpoints,
     carrier_hz,
     emphasis_length,
     normalised_frequency,
@@ -288,9 +291,22 @@ class _Mapping:
     def time(self, u: float) -> float:
         return self.clip.start + (u - self.clip.source_in) * self.clip.stretch
 
+    def times(self, u: np.ndarray) -> np.ndarray:
+        """`time` of each of u (the same operations, so the same bits)."""
+        return self.clip.start + (u - self.clip.source_in) * self.clip.stretch
+
     def frequency(self, f: float) -> float | None:
         """The normalised frequency heard after a stretch, or None outside the carrier range."""
         return f if self.clip.stretch == 1.0 else _stretched(f, self.clip.stretch)
+
+    def frequencies(self, f: np.ndarray) -> np.ndarray | None:
+        """`frequency` of each of f (the same operations), or None if one is outside the range."""
+        if self.clip.stretch == 1.0:
+            return f
+        hz = np.asarray(carrier_hz(f), dtype=np.float64) / self.clip.stretch
+        if not np.all((hz >= F_MIN - 1e-9) & (hz <= F_MAX + 1e-9)):
+            return None
+        return normalised_frequency(hz)
 
     def fade(self, t: np.ndarray) -> np.ndarray:
         c = self.clip
@@ -307,13 +323,14 @@ def _clip_design(clip: Clip, tile: VibrationTile, factor: float) -> VibrationDes
     lo, hi = clip.source_in, min(clip.source_out, design.duration)
     amplitude = _cut(design.amplitude, lo, hi, outside=0.0)
     frequency = _cut(design.frequency, lo, hi, outside=None)
-    freq = [(m.time(t), m.frequency(v)) for t, v in frequency]
-    if any(v is None for _, v in freq):
+    heard = m.frequencies(frequency.values)
+    if heard is None:
         return None
-    amp = [(m.time(t), min(1.0, v * m.gain)) for t, v in amplitude]
+    freq = Breakpoints(m.times(frequency.times), heard)
+    amp = Breakpoints(m.times(amplitude.times), np.minimum(1.0, amplitude.values * m.gain))
     faded = clip.fade_in.length > 0 or clip.fade_out.length > 0
     if faded:
-        amp = _faded(amp, m)
+        amp = breakpoints(_faded(list(amp), m))
     accents = []
     for e in design.emphasis:
         if clip.source_in <= e.time < clip.source_out:
@@ -323,29 +340,44 @@ def _clip_design(clip: Clip, tile: VibrationTile, factor: float) -> VibrationDes
             t = m.time(e.time)
             level = e.amplitude * m.gain * (float(m.fade(np.array([t]))[0]) if faded else 1.0)
             accents.append(Emphasis(t, min(1.0, level), f))
-    end = max([m.time(hi)] + [t for t, _ in amp] + [t for t, _ in freq] + [e.time for e in accents])
-    return VibrationDesign(tuple(amp), tuple(freq), tuple(accents), end)  # type: ignore[arg-type]
+    ends = [float(p.times[-1]) for p in (amp, freq) if len(p)]  # times ascend
+    end = max([m.time(hi)] + ends + [e.time for e in accents])
+    return VibrationDesign(amp, freq, tuple(accents), end)
 
 
-def _cut(points, lo: float, hi: float, outside: float | None) -> list[tuple[float, float]]:
-    """Breakpoints within [lo, hi], with interpolated ends where the range cuts a segment."""
-    inside = [p for p in points if lo <= p[0] <= hi]
-    if len(inside) == len(points) or not points:
-        return list(points)
-    t = np.array([p[0] for p in points])
-    v = np.array([p[1] for p in points])
+@overload
+def _cut(points: Breakpoints, lo: float, hi: float, outside: float | None) -> Breakpoints: ...
+@overload
+def _cut(
+    points: Sequence[tuple[float, float]], lo: float, hi: float, outside: float | None
+) -> list[tuple[float, float]]: ...
+
+
+def _cut(points, lo: float, hi: float, outside: float | None):
+    """Breakpoints within [lo, hi], with interpolated ends where the range cuts a segment:
+    Breakpoints for Breakpoints, else a list of (t, v) pairs."""
+    given = breakpoints(points)
+    t, v = given.times, given.values
+    inside = (lo <= t) & (t <= hi)
+    if inside.all():
+        return given if isinstance(points, Breakpoints) else list(given)
 
     def at(x: float) -> float:
         if outside is not None and (x < t[0] or x > t[-1]):
             return outside
         return float(np.interp(x, t, v))
 
-    out = list(inside)
-    if t[0] < lo and (not out or out[0][0] > lo):
-        out.insert(0, (lo, at(lo)))
-    if t[-1] > hi and (not out or out[-1][0] < hi):
-        out.append((hi, at(hi)))
-    return out
+    times, values = [t[inside]], [v[inside]]
+    first = times[0][0] if len(times[0]) else None
+    if t[0] < lo and (first is None or first > lo):
+        times.insert(0, np.array([lo]))
+        values.insert(0, np.array([at(lo)]))
+    last = times[-1][-1] if len(times[-1]) else None
+    if t[-1] > hi and (last is None or last < hi):
+        times.append(np.array([hi]))
+        values.append(np.array([at(hi)]))
+    cut = Breakpoints(np.concatenate(times), np.concatenate(values))
+    return cut if isinstance(points, Breakpoints) else list(cut)
 
 
 def _faded(amp: list[tuple[float, float]], m: _Mapping) -> list[tuple[float, float]]:
@@ -373,7 +405,9 @@ def _overlapping(pieces: list[VibrationDesign]) -> bool:
 
 
 def _span(design: VibrationDesign) -> tuple[float, float]:
-    times = [t for t, _ in design.amplitude] + [e.time for e in design.emphasis]
+    times = design.amplitude.times  # ascending
+    ends = [float(times[0]), float(times[-1])] if len(times) else []
+    times = ends + [e.time for e in design.emphasis]
     return (min(times, default=design.duration), max(times, default=design.duration))
 
 
@@ -382,22 +416,29 @@ def _joined(pieces: list[VibrationDesign], accents: list[Emphasis]) -> Vibration
     pieces = sorted(pieces, key=_span)
     if len(pieces) == 1 and not accents:
         return pieces[0]
-    amplitude: list[tuple[float, float]] = []
-    frequency: list[tuple[float, float]] = []
+    amplitude: list[np.ndarray] = []  # times and values in turn
+    frequency: list[np.ndarray] = []
     for k, piece in enumerate(pieces):
-        amp = list(piece.amplitude)
-        if amp and k > 0 and amp[0][1] > 0:
-            amp.insert(0, (amp[0][0], 0.0))
-        if amp and k < len(pieces) - 1 and amp[-1][1] > 0:
-            amp.append((amp[-1][0], 0.0))
-        amplitude += amp
-        frequency += piece.frequency
+        t, v = piece.amplitude.times, piece.amplitude.values
+        if len(t) and k > 0 and v[0] > 0:
+            t, v = np.concatenate([t[:1], t]), np.concatenate([[0.0], v])
+        if len(t) and k < len(pieces) - 1 and v[-1] > 0:
+            t, v = np.concatenate([t, t[-1:]]), np.concatenate([v, [0.0]])
+        amplitude += [t, v]
+        frequency += [piece.frequency.times, piece.frequency.values]
     emphasis = [e for p in pieces for e in p.emphasis] + accents
     # emphasis clips read back exactly: the design lasts as long as its envelopes, or until the
     # last emphasis starts (to its end when there are no envelopes)
     ends = [p.duration for p in pieces] or [e.time + e.length for e in accents]
     duration = max(ends + [e.time for e in accents])
-    return VibrationDesign(tuple(amplitude), tuple(frequency), tuple(emphasis), duration)
+    return VibrationDesign(_concatenated(amplitude), _concatenated(frequency), emphasis, duration)
+
+
+def _concatenated(arrays: list[np.ndarray]) -> Breakpoints:
+    """Breakpoints from times and values arrays in turn, joined in order."""
+    return Breakpoints(
+        np.concatenate([np.empty(0), *arrays[0::2]]), np.concatenate([np.empty(0), *arrays[1::2]])
+    )
 
 
 # --- analysis of anything else ------------------------------------------------------------------

@@ -72,8 +72,8 @@ def _check_complete(path: Path) -> None:
 def design_of_analysis(analysis: SoundAnalysis) -> VibrationDesign:
     """The analysis as a vibration design (breakpoints in seconds, values 0..1)."""
     return VibrationDesign(
-        amplitude=tuple((float(t), float(v)) for t, v in analysis.amplitude),
-        frequency=tuple((float(t), float(v)) for t, v in analysis.frequency),
+        amplitude=analysis.amplitude,  # (n, 2) arrays: held as arrays, no object per point
+        frequency=analysis.frequency,
         emphasis=tuple(Emphasis(float(t), float(a), float(f)) for t, a, f in analysis.emphasis),
         duration=float(analysis.duration),
     )
@@ -178,19 +178,28 @@ def convert_file(
     output: str | os.PathLike,
     settings: AnalysisSettings = DEFAULTS,
     staging: Staging | None = None,
+    *,
+    stages: Callable[[str], None] | None = None,
 ) -> Written:
-    """Analyse `sound` and write the design to `output` (.haptic, .ahap or a .htl project)."""
+    """Analyse `sound` and write the design to `output` (.haptic, .ahap or a .htl project).
+
+    `stages` hears "analysed", "placed" and "written" as each step ends (the memory bench).
+    """
     from timeline.files import projectfile
     from timeline.files.exporting import export_project
 
+    ended = stages or (lambda stage: None)
     output = Path(output)
     keep = output.suffix.lower() in PROJECT_EXTENSIONS
     converted = analyse_sound_file(sound, settings, keep_sound=keep, staging=staging)
+    ended("analysed")
     project = place_converted(edits.new_project(), converted)
+    ended("placed")
     if keep:
         projectfile.save(project, output)
     else:
         export_project(project, output)
+    ended("written")
     return Written(project, converted.gain_db, converted.notes)
 
 

@@ -18,6 +18,7 @@ an emphasis instead: its ducking).
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, overload
 
@@ -30,7 +31,7 @@ F_MAX = 230.0  # Hz at normalised frequency 1
 DEFAULT_FREQUENCY = 0.5  # normalised frequency assumed when a design has no frequency envelope
 EMPHASIS_CYCLES = 2
 
-Breakpoints = tuple[tuple[float, float], ...]
+_ITER_CHUNK = 4096  # breakpoints made into Python floats at a time while iterating
 
 
 def carrier_hz(frequency: np.ndarray | float) -> np.ndarray | float:
@@ -56,15 +57,91 @@ def _unit(value: float, what: str) -> float:
     return value
 
 
-def _breakpoints(points, what: str) -> Breakpoints:
-    rows = tuple(points)
-    if not rows:
-        return ()
-    try:
-        array = np.array(rows, dtype=np.float64).reshape(len(rows), 2)
-    except (TypeError, ValueError):
-        raise EditError(f"{what} breakpoints must be (time, value) pairs of numbers") from None
-    t, v = array[:, 0], array[:, 1]
+class Breakpoints(Sequence[tuple[float, float]]):
+    """(time, value) breakpoints held as two read-only float64 arrays, `times` and `values`.
+
+    Read like the tuple of (t, v) pairs it stands for: indexing, iterating and comparing give
+    Python floats (made a chunk at a time while iterating, never one object per breakpoint held),
+    a slice is Breakpoints, and `np.asarray` gives the (n, 2) array. Made by `breakpoints()`.
+    """
+
+    __slots__ = ("times", "values")
+    times: np.ndarray
+    values: np.ndarray
+
+    def __init__(self, times: np.ndarray, values: np.ndarray) -> None:
+        for name, array in (("times", times), ("values", values)):
+            array = np.ascontiguousarray(array, dtype=np.float64)
+            array.setflags(write=False)
+            object.__setattr__(self, name, array)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("breakpoints are read-only")
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (Breakpoints, (self.times, self.values))
+
+    def __len__(self) -> int:
+        return len(self.times)
+
+    @overload
+    def __getitem__(self, k: int) -> tuple[float, float]: ...
+    @overload
+    def __getitem__(self, k: slice) -> Breakpoints: ...
+
+    def __getitem__(self, k: int | slice) -> tuple[float, float] | Breakpoints:
+        if isinstance(k, slice):
+            return Breakpoints(self.times[k], self.values[k])
+        return (self.times.item(k), self.values.item(k))
+
+    def __iter__(self) -> Iterator[tuple[float, float]]:
+        for first in range(0, len(self.times), _ITER_CHUNK):
+            chunk = slice(first, first + _ITER_CHUNK)
+            yield from zip(self.times[chunk].tolist(), self.values[chunk].tolist(), strict=True)
+
+    def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
+        pairs = np.column_stack([self.times, self.values]) if len(self) else np.empty((0, 2))
+        return pairs if dtype is None else pairs.astype(dtype)
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, Breakpoints):
+            return np.array_equal(self.times, other.times) and np.array_equal(
+                self.values, other.values
+            )
+        if isinstance(other, tuple):
+            return tuple(self) == other
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(((self.times + 0.0).tobytes(), (self.values + 0.0).tobytes()))  # -0.0 as 0.0
+
+    def __add__(self, other: Sequence[tuple[float, float]]) -> tuple[tuple[float, float], ...]:
+        return tuple(self) + tuple(other)
+
+    def __radd__(self, other: Sequence[tuple[float, float]]) -> tuple[tuple[float, float], ...]:
+        return tuple(other) + tuple(self)
+
+    def __repr__(self) -> str:
+        return f"Breakpoints({tuple(self)!r})"
+
+    def shifted(self, offset: float) -> Breakpoints:
+        """The same breakpoints `offset` seconds later."""
+        return Breakpoints(self.times + offset, self.values)
+
+
+def breakpoints(points: Any, what: str = "the") -> Breakpoints:
+    """Checked breakpoints from (t, v) pairs, an (n, 2) array or Breakpoints (checked, kept as
+    they are): times finite, >= 0 and in order, values in 0..1; else an EditError naming the
+    first bad one."""
+    if isinstance(points, Breakpoints):
+        t, v = points.times, points.values
+    else:
+        rows = points if isinstance(points, np.ndarray) else tuple(points)
+        try:
+            array = np.array(rows, dtype=np.float64).reshape(len(rows), 2)
+        except (TypeError, ValueError):
+            raise EditError(f"{what} breakpoints must be (time, value) pairs of numbers") from None
+        t, v = array[:, 0], array[:, 1]
     bad_time = ~(np.isfinite(t) & (t >= 0.0))
     if bad_time.any():
         k = int(np.flatnonzero(bad_time)[0])
@@ -77,7 +154,7 @@ def _breakpoints(points, what: str) -> Breakpoints:
     if bad_value.any():
         k = int(np.flatnonzero(bad_value)[0])
         raise EditError(f"{what} breakpoint {k + 1}'s value must be between 0 and 1, not {v[k]!r}")
-    return tuple(zip(t.tolist(), v.tolist(), strict=True))
+    return points if isinstance(points, Breakpoints) else Breakpoints(t, v)
 
 
 @dataclass(frozen=True)
@@ -121,36 +198,40 @@ def emphasis_pulse(d: np.ndarray, amplitude: float, frequency: float) -> np.ndar
     return np.where(inside, amplitude * fade * np.sin(2.0 * np.pi * hz * d), 0.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class VibrationDesign:
-    """Amplitude and frequency breakpoints (seconds, 0..1), emphasis, and the design's length."""
+    """Amplitude and frequency breakpoints (seconds, 0..1; held as `Breakpoints`, float64 arrays,
+    whatever they are given as), emphasis, and the design's length."""
 
     amplitude: Breakpoints
     frequency: Breakpoints
     emphasis: tuple[Emphasis, ...]
     duration: float
 
-    def __post_init__(self) -> None:
-        amplitude = _breakpoints(self.amplitude, "amplitude")
-        frequency = _breakpoints(self.frequency, "frequency")
-        given: tuple[Any, ...] = self.emphasis  # (time, amplitude, frequency) tuples are welcome
-        emphasis = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in given)
-        emphasis = tuple(sorted(emphasis, key=lambda e: e.time))
-        duration = float(self.duration)
-        if not (math.isfinite(duration) and duration > 0.0):
-            raise EditError(f"a vibration design must last a positive time, not {duration!r} s")
-        latest = max(
-            [t for t, _ in amplitude] + [t for t, _ in frequency] + [e.time for e in emphasis],
-            default=0.0,
-        )
-        if latest > duration:
-            raise EditError(
-                f"a vibration design of {duration:g} s has a breakpoint at {latest:g} s"
-            )
-        object.__setattr__(self, "amplitude", amplitude)
-        object.__setattr__(self, "frequency", frequency)
-        object.__setattr__(self, "emphasis", emphasis)
-        object.__setattr__(self, "duration", duration)
+    def __init__(
+        self,
+        amplitude: Breakpoints | np.ndarray | Iterable[tuple[float, float]],
+        frequency: Breakpoints | np.ndarray | Iterable[tuple[float, float]],
+        emphasis: Iterable[Emphasis | tuple[float, float, float]],
+        duration: float,
+    ) -> None:
+        """Checked breakpoints (`breakpoints`), emphasis in time order ((time, amplitude,
+        frequency) tuples are welcome), and a positive duration reaching past them all."""
+        checked_amplitude = breakpoints(amplitude, "amplitude")
+        checked_frequency = breakpoints(frequency, "frequency")
+        accents = tuple(e if isinstance(e, Emphasis) else Emphasis(*e) for e in emphasis)
+        accents = tuple(sorted(accents, key=lambda e: e.time))
+        length = float(duration)
+        if not (math.isfinite(length) and length > 0.0):
+            raise EditError(f"a vibration design must last a positive time, not {length!r} s")
+        ends = [float(p.times[-1]) for p in (checked_amplitude, checked_frequency) if len(p)]
+        latest = max(ends + [e.time for e in accents], default=0.0)  # times ascend
+        if latest > length:
+            raise EditError(f"a vibration design of {length:g} s has a breakpoint at {latest:g} s")
+        object.__setattr__(self, "amplitude", checked_amplitude)
+        object.__setattr__(self, "frequency", checked_frequency)
+        object.__setattr__(self, "emphasis", accents)
+        object.__setattr__(self, "duration", length)
 
     @property
     def extent(self) -> float:
@@ -160,8 +241,8 @@ class VibrationDesign:
     def shifted(self, offset: float, duration: float | None = None) -> VibrationDesign:
         """The same design `offset` seconds later (duration grows by the offset by default)."""
         return VibrationDesign(
-            tuple((t + offset, v) for t, v in self.amplitude),
-            tuple((t + offset, v) for t, v in self.frequency),
+            self.amplitude.shifted(offset),
+            self.frequency.shifted(offset),
             tuple(Emphasis(e.time + offset, e.amplitude, e.frequency) for e in self.emphasis),
             self.duration + offset if duration is None else duration,
         )
@@ -171,8 +252,7 @@ class VibrationDesign:
         u = np.asarray(u, dtype=np.float64)
         if not self.amplitude:
             return np.zeros(u.shape)
-        t = np.array([p[0] for p in self.amplitude])
-        v = np.array([p[1] for p in self.amplitude])
+        t, v = self.amplitude.times, self.amplitude.values
         return np.where((u < t[0]) | (u > t[-1]), 0.0, np.interp(u, t, v))
 
     def frequency_at(self, u: np.ndarray) -> np.ndarray:
@@ -180,16 +260,14 @@ class VibrationDesign:
         u = np.asarray(u, dtype=np.float64)
         if not self.frequency:
             return np.full(u.shape, DEFAULT_FREQUENCY)
-        t = np.array([p[0] for p in self.frequency])
-        v = np.array([p[1] for p in self.frequency])
-        return np.interp(u, t, v)
+        return np.interp(u, self.frequency.times, self.frequency.values)
 
     def cycles(self, u: np.ndarray) -> np.ndarray:
         """Carrier cycles elapsed from time 0 to each u (the exact integral of its frequency)."""
         u = np.asarray(u, dtype=np.float64)
-        points = self.frequency or ((0.0, DEFAULT_FREQUENCY),)
-        t = np.array([p[0] for p in points])
-        hz = np.asarray(carrier_hz(np.array([p[1] for p in points])), dtype=np.float64)
+        points = self.frequency or Breakpoints(np.zeros(1), np.full(1, DEFAULT_FREQUENCY))
+        t = points.times
+        hz = np.asarray(carrier_hz(points.values), dtype=np.float64)
         width = np.diff(t)
         at_knots = hz[0] * t[0] + np.concatenate(
             [[0.0], np.cumsum(0.5 * (hz[:-1] + hz[1:]) * width)]

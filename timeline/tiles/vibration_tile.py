@@ -47,8 +47,8 @@ class VibrationTile:
         d = self.design
         return "vibration:" + json.dumps(
             [
-                d.amplitude,
-                d.frequency,
+                np.asarray(d.amplitude).tolist(),
+                np.asarray(d.frequency).tolist(),
                 [(e.time, e.amplitude, e.frequency) for e in d.emphasis],
                 d.duration,
             ]
@@ -71,8 +71,8 @@ class VibrationTile:
             "source": self.source,
             "sharpness": self.sharpness,
             "duration": d.duration,
-            "amplitude": [list(p) for p in d.amplitude],
-            "frequency": [list(p) for p in d.frequency],
+            "amplitude": np.asarray(d.amplitude).tolist(),
+            "frequency": np.asarray(d.frequency).tolist(),
             "emphasis": [[e.time, e.amplitude, e.frequency] for e in d.emphasis],
         }
 
