@@ -30,31 +30,45 @@ COMPRESSION = 1.0  # C in log(1 + C * magnitude / peak) of the onset strength
 BAND = 8  # bins summed into one band of the onset strength (a log per band, not per bin)
 
 
+FRAME_CHUNK = 64  # frames windowed, transformed and measured at once (their buffers stay in cache)
+
+
 @njit(cache=True)
-def _windowed(data: np.ndarray, ends: np.ndarray, window: np.ndarray) -> np.ndarray:
-    """The frames data[e : e + len(window)] for each e in ends, times the window."""
-    size = window.shape[0]
-    frames = np.empty((ends.shape[0], size), dtype=data.dtype)
+def _windowed(
+    history: np.ndarray, block: np.ndarray, ends: np.ndarray, window: np.ndarray, out: np.ndarray
+) -> None:
+    """out[j] = data[e : e + len(window)] times the window, for each e = ends[j], where data is
+    `history` followed by `block` (cast to the frames' float32)."""
+    size, h = window.shape[0], history.shape[0]
     for j in range(ends.shape[0]):
         e = ends[j]
-        for k in range(size):
-            frames[j, k] = data[e + k] * window[k]
-    return frames
+        split = min(max(h - e, 0), size)
+        for k in range(split):
+            out[j, k] = history[e + k] * window[k]
+        for k in range(split, size):
+            out[j, k] = np.float32(block[e + k - h]) * window[k]
 
 
 @njit(cache=True, fastmath=True)
 def _features(
-    spectra: np.ndarray, half: int, lowpass: int, compression: float, previous: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Per frame of complex spectra: flux (summed magnitude rise), onset strength (summed rise
-    of the log of each BAND bins' magnitude), power (summed squared magnitude), and the
-    magnitude sum and bin-weighted sum below `lowpass`; `previous` (the last frame's
-    magnitudes, then its bands' logs) is updated in place. Loops without branches, so they
-    compile to vector code."""
+    spectra: np.ndarray,
+    half: int,
+    lowpass: int,
+    compression: float,
+    previous: np.ndarray,
+    flux: np.ndarray,
+    strength: np.ndarray,
+    power: np.ndarray,
+    energy: np.ndarray,
+    weighted: np.ndarray,
+) -> None:
+    """Per frame of complex spectra, into the arrays given: flux (summed magnitude rise), onset
+    strength (summed rise of the log of each BAND bins' magnitude), power (summed squared
+    magnitude), and the magnitude sum and bin-weighted sum below `lowpass`; `previous` (the
+    last frame's magnitudes, then its bands' logs) is updated in place. Loops without
+    branches, so they compile to vector code."""
     n = spectra.shape[0]
     bands = (half + BAND - 1) // BAND
-    flux, strength, power = np.zeros(n), np.zeros(n), np.zeros(n)
-    energy, weighted = np.zeros(n), np.zeros(n)
     row = np.empty(half, dtype=previous.dtype)
     for j in range(n):
         for k in range(half):
@@ -82,7 +96,6 @@ def _features(
             previous[1, b] = level
         flux[j], strength[j], power[j] = rise, log_rise, squares
         energy[j], weighted[j] = total, moment
-    return flux, strength, power, energy, weighted
 
 
 @dataclass(frozen=True)
@@ -119,6 +132,7 @@ class SpectrumFrames:
     history: np.ndarray  # the last `size` samples seen (zeros before the sound)
     previous: np.ndarray  # the last frame's magnitudes (row 0) and their logs (row 1)
     pending: int  # samples seen since the last frame ended
+    frames: np.ndarray  # FRAME_CHUNK windowed frames, reused from chunk to chunk
     seen: int = 0  # samples fed so far
 
     @classmethod
@@ -130,28 +144,38 @@ class SpectrumFrames:
         window = (0.5 - 0.5 * np.cos(2.0 * np.pi * n / size)).astype(FRAME_DTYPE)
         history, previous = np.zeros(size, FRAME_DTYPE), np.zeros((2, half), FRAME_DTYPE)
         compression = COMPRESSION / peak if peak > 1e-12 else COMPRESSION
-        return cls(rate, size, settings.hop, lowpass, compression, window, history, previous, 0)
+        frames = np.empty((FRAME_CHUNK, size), FRAME_DTYPE)
+        return cls(
+            rate, size, settings.hop, lowpass, compression, window, history, previous, 0, frames
+        )
 
     def process(self, block: np.ndarray) -> tuple[np.ndarray, np.ndarray, Features]:
         """Times (s), centroids (fraction of Nyquist) and onset features of the frames that end
         in block."""
-        data = np.concatenate([self.history, np.asarray(block, dtype=FRAME_DTYPE)])
+        block = np.ascontiguousarray(block)
         first = self.hop - self.pending  # samples into the block where the next frame ends
-        ends = np.arange(first, len(block) + 1, self.hop)
+        ends = np.arange(first, len(block) + 1, self.hop)  # frame j covers data[e : e + size]
+        history = self.history  # data: the history, then the block
         self.pending = (self.pending + len(block)) % self.hop
-        self.history = data[-self.size :]
+        self.history = _last(history, block, self.size)
         if len(ends) == 0:
             self.seen += len(block)
             return np.empty(0), np.empty(0), Features.empty()
-        frames = _windowed(data, ends, self.window)  # frame j covers data[e : e + size]
         times = (self.seen + ends - self.size / 2.0) / self.rate
         self.seen += len(block)
         half = self.size // 2
-        # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array it returns
-        spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1, overwrite_x=True))
-        flux, strength, power, energy, weighted = _features(
-            spectra, half, self.lowpass_bin, self.compression, self.previous
-        )
+        n = len(ends)
+        flux, strength, power = np.zeros(n), np.zeros(n), np.zeros(n)
+        energy, weighted = np.zeros(n), np.zeros(n)
+        for lo in range(0, n, FRAME_CHUNK):
+            hi = min(n, lo + FRAME_CHUNK)
+            frames = self.frames[: hi - lo]
+            _windowed(history, block, ends[lo:hi], self.window, frames)
+            # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array
+            spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1, workers=1))
+            _features(spectra, half, self.lowpass_bin, self.compression, self.previous,
+                      flux[lo:hi], strength[lo:hi], power[lo:hi], energy[lo:hi],
+                      weighted[lo:hi])  # fmt: skip
         loud = energy >= QUIET_BIN_MAGNITUDE * (self.lowpass_bin - 1)
         centroid = np.where(loud, weighted / np.maximum(energy, 1e-300) / half, 0.0)
         return times, centroid, Features(flux, strength, power)
@@ -159,6 +183,13 @@ class SpectrumFrames:
     def finish(self) -> tuple[np.ndarray, np.ndarray, Features]:
         """The frames that reach past the end of the sound, up to one centred on its end."""
         return self.process(np.zeros(self.size // 2))
+
+
+def _last(history: np.ndarray, block: np.ndarray, size: int) -> np.ndarray:
+    """The last `size` samples of the history followed by the block, as frame samples."""
+    if len(block) >= size:
+        return block[len(block) - size :].astype(FRAME_DTYPE)
+    return np.concatenate([history[len(block) :], block.astype(FRAME_DTYPE)])
 
 
 def frequency_values(centroid: np.ndarray, rate: float, settings: AnalysisSettings) -> np.ndarray:
