@@ -20,7 +20,9 @@ from timeline.analysis.sound import Level, SoundAnalysis, analyse_blocks
 from timeline.errors import AnalysisError
 
 BLOCK_FRAMES = 1 << 16
-HELD_FRAMES = 1 << 22  # a file this long or shorter is read once, its mono blocks held (16 MB)
+# a file this long or shorter is read once, its mono blocks held: 2 MB of float32, about the
+# analysis's own working memory (10.9 s at 48 kHz)
+HELD_FRAMES = 1 << 19
 
 
 def _open(path: Path) -> sf.SoundFile:

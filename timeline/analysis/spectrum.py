@@ -30,8 +30,6 @@ QUIET_BIN_MAGNITUDE = 0.3  # mean magnitude per kept bin below which the centroi
 FRAME_DTYPE = np.float32
 COMPRESSION = 1.0  # C in log(1 + C * magnitude / peak) of the onset strength
 BAND = 8  # bins summed into one band of the onset strength (a log per band, not per bin)
-
-
 FRAME_CHUNK = 64  # frames windowed, transformed and measured at once (their buffers stay in cache)
 
 
