@@ -40,3 +40,18 @@ def test_empty_sound_file(tmp_path: Path) -> None:
     sf.write(path, np.zeros(0), RATE)
     with pytest.raises(AnalysisError, match="holds no audio samples"):
         analyse_file(path)
+
+
+def test_a_file_read_once_or_twice_gives_the_same_design(tmp_path: Path, monkeypatch) -> None:
+    from timeline.analysis import source
+
+    monkeypatch.setattr(source, "BLOCK_FRAMES", 5000)  # several blocks and a short last one
+    stereo = np.column_stack([tone_bursts([0.05, 0.2], 150.0, 0.3)] * 2).astype(np.float32)
+    path = tmp_path / "burst.wav"
+    sf.write(path, stereo, RATE, subtype="FLOAT")
+    held = analyse_file(path)
+    monkeypatch.setattr(source, "HELD_FRAMES", 0)  # read twice, as a long file is
+    twice = analyse_file(path)
+    for name in ("amplitude", "frequency", "emphasis"):
+        np.testing.assert_array_equal(getattr(held, name), getattr(twice, name))
+    assert len(held.emphasis) == 2

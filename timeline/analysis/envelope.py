@@ -37,16 +37,19 @@ def _follow(
     """The moving RMS of `block` over len(squares) samples (`squares`: the squares before it,
     updated in place) fed to the follower, in one pass; returns the follower's state."""
     w, n = squares.shape[0], block.shape[0]
-    sums = np.empty(w + n)  # running sums of the squares, the window's history first
+    # running sums of the squares from the window's history on; the ring holds the last w, so
+    # ring[i % w] is the sum before the window that ends at sample i
+    ring = np.empty(w)
     total = 0.0
     for j in range(w):
         total += squares[j]
-        sums[j] = total
+        ring[j] = total
     for i in range(n):
         x = np.float64(block[i])
+        before = ring[i % w]
         total += x * x
-        sums[w + i] = total
-        rms = np.sqrt(max(total - sums[i], 0.0) / w)
+        ring[i % w] = total
+        rms = np.sqrt(max(total - before, 0.0) / w)
         if rms > level:
             level = attack * (level - rms) + rms
             held = 0
@@ -92,9 +95,10 @@ class EnvelopeFollower:
             np.zeros(window),
         )
 
-    def process(self, block: np.ndarray) -> np.ndarray:
-        """The envelope (float64) for the next samples of the sound."""
-        out = np.empty(len(block))
+    def process(self, block: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """The envelope (float64) for the next samples of the sound, written into `out` (as many
+        float64 as the block) when given."""
+        out = np.empty(len(block)) if out is None else out[: len(block)]
         self.level, self.held = _follow(
             np.ascontiguousarray(block), self.squares, out, self.attack, self.release,
             self.hold, self.level, self.held,

@@ -34,47 +34,43 @@ def _error_without(t: np.ndarray, v: np.ndarray, left: int, right: int) -> float
 
 
 @njit(cache=True)
-def _before(keys: np.ndarray, links: np.ndarray, a: int, b: int) -> bool:
-    """Heap order of entries a and b: by area, then point, left and right (as tuples compare)."""
-    if keys[a] != keys[b]:
-        return keys[a] < keys[b]
-    for c in range(3):
-        if links[a, c] != links[b, c]:
-            return links[a, c] < links[b, c]
-    return False
+def _less(area: np.ndarray, a: int, b: int) -> bool:
+    """Heap order of points a and b: by area, then by index."""
+    if area[a] != area[b]:
+        return area[a] < area[b]
+    return a < b
 
 
 @njit(cache=True)
-def _push(heap: np.ndarray, size: int, keys: np.ndarray, links: np.ndarray, entry: int) -> int:
-    """Entry into the binary min-heap of `size` entries; the new size."""
-    i = size
-    heap[i] = entry
+def _sift_up(heap: np.ndarray, place: np.ndarray, area: np.ndarray, i: int) -> None:
+    point = heap[i]
     while i > 0:
         parent = (i - 1) // 2
-        if not _before(keys, links, heap[i], heap[parent]):
+        if not _less(area, point, heap[parent]):
             break
-        heap[i], heap[parent] = heap[parent], heap[i]
+        heap[i] = heap[parent]
+        place[heap[i]] = i
         i = parent
-    return size + 1
+    heap[i] = point
+    place[point] = i
 
 
 @njit(cache=True)
-def _pop(heap: np.ndarray, size: int, keys: np.ndarray, links: np.ndarray) -> int:
-    """Take the heap's first entry to its end (heap[size - 1]); the caller shrinks the size."""
-    last = size - 1
-    heap[0], heap[last] = heap[last], heap[0]
-    i = 0
+def _sift_down(heap: np.ndarray, place: np.ndarray, area: np.ndarray, i: int, size: int) -> None:
+    point = heap[i]
     while True:
         child = 2 * i + 1
-        if child >= last:
+        if child >= size:
             break
-        if child + 1 < last and _before(keys, links, heap[child + 1], heap[child]):
+        if child + 1 < size and _less(area, heap[child + 1], heap[child]):
             child += 1
-        if not _before(keys, links, heap[child], heap[i]):
+        if not _less(area, heap[child], point):
             break
-        heap[i], heap[child] = heap[child], heap[i]
+        heap[i] = heap[child]
+        place[heap[i]] = i
         i = child
-    return heap[last]
+    heap[i] = point
+    place[point] = i
 
 
 @njit(cache=True)
@@ -87,27 +83,29 @@ def _reduce_region(
         return keep
     prev = np.arange(-1, n - 1)
     nxt = np.arange(1, n + 1)
-    # heap entries (area; point, left, right): at most the n - 2 first and two per removal;
-    # an entry is stale once its point's neighbours change
-    capacity = 3 * n
-    keys = np.empty(capacity)
-    links = np.empty((capacity, 3), dtype=np.int64)
-    heap = np.empty(capacity, dtype=np.int64)
-    entries = 0
-    size = 0
+    # a min-heap of the inner points still to consider, by (area with the neighbours, index);
+    # `place` is each point's position in it (-1: not in it), so a point whose neighbour goes
+    # has its area changed where it stands
+    area = np.zeros(n)
+    place = np.full(n, -1, dtype=np.int64)
+    heap = np.empty(n, dtype=np.int64)
+    size = n - 2
     for i in range(1, n - 1):
-        keys[entries] = _area(t, v, i - 1, i, i + 1)
-        links[entries, 0], links[entries, 1], links[entries, 2] = i, i - 1, i + 1
-        size = _push(heap, size, keys, links, entries)
-        entries += 1
+        area[i] = _area(t, v, i - 1, i, i + 1)
+        heap[i - 1] = i
+        place[i] = i - 1
+    for i in range(size // 2 - 1, -1, -1):
+        _sift_down(heap, place, area, i, size)
     count = n
     while size > 0:
-        entry = _pop(heap, size, keys, links)
+        mid = heap[0]
         size -= 1
-        area, mid, left, right = keys[entry], links[entry, 0], links[entry, 1], links[entry, 2]
-        if not keep[mid] or prev[mid] != left or nxt[mid] != right:
-            continue
-        if tolerance < 0 and count <= budget and area >= minimum_score:
+        place[mid] = -1
+        if size > 0:
+            heap[0] = heap[size]
+            _sift_down(heap, place, area, 0, size)
+        left, right = prev[mid], nxt[mid]
+        if tolerance < 0 and count <= budget and area[mid] >= minimum_score:
             if slack <= 0:
                 break
             if _error_without(t, v, left, right) > slack:
@@ -120,10 +118,15 @@ def _reduce_region(
         prev[right] = left
         for m in (left, right):
             if 0 < m < n - 1:
-                keys[entries] = _area(t, v, prev[m], m, nxt[m])
-                links[entries, 0], links[entries, 1], links[entries, 2] = m, prev[m], nxt[m]
-                size = _push(heap, size, keys, links, entries)
-                entries += 1
+                area[m] = _area(t, v, prev[m], m, nxt[m])
+                if place[m] < 0:
+                    place[m] = size
+                    heap[size] = m
+                    size += 1
+                    _sift_up(heap, place, area, place[m])
+                else:
+                    _sift_up(heap, place, area, place[m])
+                    _sift_down(heap, place, area, place[m], size)
     return keep
 
 

@@ -7,7 +7,9 @@ a fraction of the Nyquist frequency; where those bins hold too little energy it 
 the summed rise of each bin's magnitude since the previous frame (it scores an emphasis's
 sharpness); the onset strength is the same sum over bands of BAND bins, log-compressed as
 log(1 + C m) with m relative to the sound's peak, so the same sound louder or softer gives the
-same onsets (emphasis times, onsets.py).
+same onsets (emphasis times, onsets.py); it is taken only when the adaptive emphasis uses it.
+Frames are windowed, transformed and measured FRAME_CHUNK at a time in buffers kept from chunk to
+chunk (fresh memory for every block's frames cost more than the arithmetic on them).
 """
 
 from __future__ import annotations
@@ -28,33 +30,41 @@ QUIET_BIN_MAGNITUDE = 0.3  # mean magnitude per kept bin below which the centroi
 FRAME_DTYPE = np.float32
 COMPRESSION = 1.0  # C in log(1 + C * magnitude / peak) of the onset strength
 BAND = 8  # bins summed into one band of the onset strength (a log per band, not per bin)
+FRAME_CHUNK = 64  # frames windowed, transformed and measured at once (their buffers stay in cache)
 
 
 @njit(cache=True)
-def _windowed(data: np.ndarray, ends: np.ndarray, window: np.ndarray) -> np.ndarray:
-    """The frames data[e : e + len(window)] for each e in ends, times the window."""
+def _windowed(data: np.ndarray, ends: np.ndarray, window: np.ndarray, out: np.ndarray) -> None:
+    """out[j] = data[e : e + len(window)] times the window, for each e = ends[j]."""
     size = window.shape[0]
-    frames = np.empty((ends.shape[0], size), dtype=data.dtype)
     for j in range(ends.shape[0]):
         e = ends[j]
         for k in range(size):
-            frames[j, k] = data[e + k] * window[k]
-    return frames
+            out[j, k] = data[e + k] * window[k]
 
 
 @njit(cache=True, fastmath=True)
 def _features(
-    spectra: np.ndarray, half: int, lowpass: int, compression: float, previous: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Per frame of complex spectra: flux (summed magnitude rise), onset strength (summed rise
-    of the log of each BAND bins' magnitude), power (summed squared magnitude), and the
-    magnitude sum and bin-weighted sum below `lowpass`; `previous` (the last frame's
-    magnitudes, then its bands' logs) is updated in place. Loops without branches, so they
-    compile to vector code."""
+    spectra: np.ndarray,
+    half: int,
+    lowpass: int,
+    compression: float,
+    previous: np.ndarray,
+    flux: np.ndarray,
+    strength: np.ndarray,
+    power: np.ndarray,
+    energy: np.ndarray,
+    weighted: np.ndarray,
+    logs: bool,
+) -> None:
+    """Per frame of complex spectra, into the arrays given: flux (summed magnitude rise), onset
+    strength (summed rise of the log of each BAND bins' magnitude), power (summed squared
+    magnitude), and the magnitude sum and bin-weighted sum below `lowpass`; `previous` (the
+    last frame's magnitudes, then its bands' logs) is updated in place. Without `logs` the
+    onset strength (a log per band, the costliest part) is left as it is. Loops without
+    branches, so they compile to vector code."""
     n = spectra.shape[0]
     bands = (half + BAND - 1) // BAND
-    flux, strength, power = np.zeros(n), np.zeros(n), np.zeros(n)
-    energy, weighted = np.zeros(n), np.zeros(n)
     row = np.empty(half, dtype=previous.dtype)
     for j in range(n):
         for k in range(half):
@@ -72,6 +82,9 @@ def _features(
         for k in range(lowpass):
             total += row[k]
             moment += k * row[k]
+        flux[j], power[j], energy[j], weighted[j] = rise, squares, total, moment
+        if not logs:
+            continue
         log_rise = 0.0
         for b in range(bands):
             band = 0.0
@@ -80,9 +93,7 @@ def _features(
             level = np.log1p(compression * band)
             log_rise += max(level - previous[1, b], 0.0)
             previous[1, b] = level
-        flux[j], strength[j], power[j] = rise, log_rise, squares
-        energy[j], weighted[j] = total, moment
-    return flux, strength, power, energy, weighted
+        strength[j] = log_rise
 
 
 @dataclass(frozen=True)
@@ -111,6 +122,9 @@ class SpectrumFrames:
     history: np.ndarray  # the last `size` samples seen (zeros before the sound)
     previous: np.ndarray  # the last frame's magnitudes (row 0) and their logs (row 1)
     pending: int  # samples seen since the last frame ended
+    onsets: bool  # whether the onset strength is used (adaptive emphasis): 0 when not
+    frames: np.ndarray  # FRAME_CHUNK windowed frames, reused from chunk to chunk
+    buffer: np.ndarray  # the history and a block as frame samples, reused from block to block
     seen: int = 0  # samples fed so far
 
     @classmethod
@@ -122,31 +136,52 @@ class SpectrumFrames:
         window = (0.5 - 0.5 * np.cos(2.0 * np.pi * n / size)).astype(FRAME_DTYPE)
         history, previous = np.zeros(size, FRAME_DTYPE), np.zeros((2, half), FRAME_DTYPE)
         compression = COMPRESSION / peak if peak > 1e-12 else COMPRESSION
-        return cls(rate, size, settings.hop, lowpass, compression, window, history, previous, 0)
+        frames = np.empty((FRAME_CHUNK, size), FRAME_DTYPE)
+        return cls(
+            rate, size, settings.hop, lowpass, compression, window, history, previous, 0,
+            settings.emphasis and settings.adaptive and settings.sensitivity > 0, frames,
+            np.empty(0, FRAME_DTYPE),
+        )  # fmt: skip
 
     def process(self, block: np.ndarray) -> tuple[np.ndarray, np.ndarray, Features]:
         """Times (s), centroids (fraction of Nyquist) and onset features of the frames that end
         in block."""
-        data = np.concatenate([self.history, np.asarray(block, dtype=FRAME_DTYPE)])
+        data = self._data(block)  # the history, then the block
         first = self.hop - self.pending  # samples into the block where the next frame ends
-        ends = np.arange(first, len(block) + 1, self.hop)
+        ends = np.arange(first, len(block) + 1, self.hop)  # frame j covers data[e : e + size]
         self.pending = (self.pending + len(block)) % self.hop
-        self.history = data[-self.size :]
+        self.history[:] = data[len(block) :]
         if len(ends) == 0:
             self.seen += len(block)
             return np.empty(0), np.empty(0), Features.empty()
-        frames = _windowed(data, ends, self.window)  # frame j covers data[e : e + size]
         times = (self.seen + ends - self.size / 2.0) / self.rate
         self.seen += len(block)
         half = self.size // 2
-        # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array it returns
-        spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1, overwrite_x=True))
-        flux, strength, power, energy, weighted = _features(
-            spectra, half, self.lowpass_bin, self.compression, self.previous
-        )
+        n = len(ends)
+        flux, strength, power = np.zeros(n), np.zeros(n), np.zeros(n)
+        energy, weighted = np.zeros(n), np.zeros(n)
+        for lo in range(0, n, FRAME_CHUNK):
+            hi = min(n, lo + FRAME_CHUNK)
+            frames = self.frames[: hi - lo]
+            _windowed(data, ends[lo:hi], self.window, frames)
+            # scipy.fft is unannotated: pyright sees its dispatcher's tuple, not the array
+            spectra = cast(np.ndarray, scipy.fft.rfft(frames, axis=1, workers=1))
+            _features(spectra, half, self.lowpass_bin, self.compression, self.previous,
+                      flux[lo:hi], strength[lo:hi], power[lo:hi], energy[lo:hi],
+                      weighted[lo:hi], self.onsets)  # fmt: skip
         loud = energy >= QUIET_BIN_MAGNITUDE * (self.lowpass_bin - 1)
         centroid = np.where(loud, weighted / np.maximum(energy, 1e-300) / half, 0.0)
         return times, centroid, Features(flux, strength, power)
+
+    def _data(self, block: np.ndarray) -> np.ndarray:
+        """The history followed by the block as frame samples, in a buffer kept for the next."""
+        n = self.size + len(block)
+        if len(self.buffer) < n:
+            self.buffer = np.empty(n, FRAME_DTYPE)
+        data = self.buffer[:n]
+        data[: self.size] = self.history
+        data[self.size :] = block
+        return data
 
     def finish(self) -> tuple[np.ndarray, np.ndarray, Features]:
         """The frames that reach past the end of the sound, up to one centred on its end."""
