@@ -147,9 +147,11 @@ def whole_loop(
     interrupt: Callable[[], None] = lambda: None,
 ) -> list[Finding]:
     """Spans where every layer is inside its own limit but the loop with all of them is
-    unstable with one of the docs' hands on the knob (or none): servo.whole_loop."""
-    loop = servo.whole_loop(dyn, period, k, b, m, servo.hand_loads(), interrupt)
-    bad = loop.any & servo.layers_inside(dyn, period, k, b, m)
+    unstable with one of the docs' hands on the knob (or none): servo.whole_loop. The growth
+    is found only where every layer is inside (elsewhere their own findings speak)."""
+    inside = servo.layers_inside(dyn, period, k, b, m)
+    loop = servo.whole_loop(dyn, period, k, b, m, servo.hand_loads(), interrupt, inside)
+    bad = loop.any & inside
     if not bad.any():
         return []
     hands = ", ".join(name for name, where in loop.unstable.items() if (where & bad).any())

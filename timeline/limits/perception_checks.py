@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import replace
 from itertools import combinations
 
@@ -167,12 +168,14 @@ def sub_jnd_clips(project: Project, info: DeviceInfo, rate: float, quality: str)
     that differ, but by less than a JND in every measure, are a step the hand cannot feel (an
     intended crescendo or contrast that is not there). Runs of such steps make one finding.
     Identical clips are a deliberate repeat and are left alone. Each clip is rendered once, on
-    its own, so the check grows with the number of clips, not with its square.
+    its own, so the check grows with the number of clips, not with its square; a clip alone of
+    its kind has no step and is not rendered.
     """
+    kinds = Counter(track.kind for track in project.tracks for _ in track.clips)
     by_kind: dict[str, list[tuple[float, str, Sampled]]] = {}
     for track in project.tracks:
         lone = replace(track, mute=False, solo=False)
-        for clip in track.clips:
+        for clip in track.clips if kinds[track.kind] > 1 else ():
             alone = replace(project, tracks=(replace(lone, clips=(replace(clip, start=0.0),)),))
             design = sample(alone, rate, quality)
             if design.length:

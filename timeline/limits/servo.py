@@ -359,7 +359,8 @@ def loop_radius(
 @dataclass(frozen=True)
 class WholeLoop:
     """The loop judged at each sample: growth per period (largest root magnitude; NaN where the
-    loop is stable with every load) and, per load, where that load makes it unstable."""
+    loop is stable with every load, or where it was not asked for) and, per load, where that
+    load makes it unstable."""
 
     radius: np.ndarray
     unstable: dict[str, np.ndarray]
@@ -377,13 +378,14 @@ def whole_loop(
     m: np.ndarray | None,
     loads: tuple[Load, ...] = (FREE,),
     interrupt: Callable[[], None] = lambda: None,
+    where: np.ndarray | None = None,
 ) -> WholeLoop:
     """Judge the linear loop (ideal sensor, no friction, no clamp) at every sample's (k, b, m)
     with each load. A negative stiffness is judged as 0: it pulls the knob away from rest, a
     slide the designer asked for (a detent's far side), not an oscillation; the clamp bounds it.
     Only the samples where (k, b, m) changes are tested (a run of equal samples is one test);
-    the growth is found (eigenvalues) only where the loop is unstable, once per distinct
-    polynomial, with `interrupt` called between pieces."""
+    the growth is found (eigenvalues) only where the loop is unstable and `where` asks (default
+    everywhere), once per distinct (k, b, m), with `interrupt` called between pieces."""
     n = k.size
     m = np.zeros(n) if m is None else m
     spring = np.maximum(k, 0.0)
@@ -398,16 +400,16 @@ def whole_loop(
         bad = test(whole, flat, spring, b, m, load.stiffness == 0.0)
         if not bad.any():
             continue
-        at = np.flatnonzero(bad)
-        radius = np.full(at.size, np.inf)
-        for first in range(0, at.size, PIECE):  # pieces: a stale check stops between them
-            interrupt()
-            part = at[first : first + PIECE]
-            radius[first : first + part.size] = _radius(
-                rows, spring[part], b[part], m[part], interrupt
-            )
-        worst[at] = np.fmax(worst[at], radius)
         unstable[load.name] = bad
+        at = np.flatnonzero(bad if where is None else bad & where)
+        if not at.size:
+            continue
+        radius = np.full(at.size, np.inf)
+        for lo in range(0, at.size, PIECE):  # pieces: a stale check stops between them
+            interrupt()
+            part = at[lo : lo + PIECE]
+            radius[lo : lo + part.size] = _radius(rows, spring, b, m, part, interrupt)
+        worst[at] = np.fmax(worst[at], radius)
     return WholeLoop(worst, unstable)
 
 
@@ -416,19 +418,27 @@ def _radius(
     k: np.ndarray,
     b: np.ndarray,
     m: np.ndarray,
+    at: np.ndarray,
     interrupt: Callable[[], None],
 ) -> np.ndarray:
-    """The growth per period of the loop at each (k, b, m) (inf where its polynomial is not
-    finite), each distinct polynomial's roots found once."""
+    """The growth per period of the loop at the samples `at` (ascending; inf where the
+    polynomial is not finite): a run of equal (k, b, m) is one polynomial, found at its first
+    sample, and each distinct (k, b, m) (the same numbers: the same polynomial) is found once."""
+    same = (at[1:] == at[:-1] + 1) & (k[at[1:]] == k[at[:-1]])
+    same &= (b[at[1:]] == b[at[:-1]]) & (m[at[1:]] == m[at[:-1]])
+    first = np.concatenate([[True], ~same])
+    starts = at[first]
+    triples = np.column_stack([k[starts], b[starts], m[starts]])
+    keys = triples.view(np.dtype((np.void, triples.itemsize * 3))).reshape(-1)
+    _, index, which = np.unique(keys, return_index=True, return_inverse=True)
+    k, b, m = triples[index].T
     with np.errstate(over="ignore", invalid="ignore"):  # absurd layers: not finite
         polys = rows[0] + np.outer(k, rows[1]) + np.outer(b, rows[2])
         polys += np.outer(m, rows[3])
     finite = np.isfinite(polys).all(axis=1)
     radius = np.full(k.size, np.inf)
-    # equal samples (a held layer) have one polynomial: find each distinct one's roots once
-    distinct, which = np.unique(polys[finite], axis=0, return_inverse=True)
-    radius[finite] = loop_radius(distinct, interrupt)[which.reshape(-1)]
-    return radius
+    radius[finite] = loop_radius(polys[finite], interrupt)
+    return radius[which.reshape(-1)][np.cumsum(first) - 1]
 
 
 def layers_inside(
