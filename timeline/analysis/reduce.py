@@ -123,10 +123,10 @@ def _reduce_region(
                     place[m] = size
                     heap[size] = m
                     size += 1
-                    _sift_up(heap, place, area, place[m])
+                    _sift_up(heap, place, area, size - 1)
                 else:
-                    _sift_up(heap, place, area, place[m])
-                    _sift_down(heap, place, area, place[m], size)
+                    _sift_up(heap, place, area, int(place[m]))
+                    _sift_down(heap, place, area, int(place[m]), size)
     return keep
 
 
