@@ -9,16 +9,25 @@ import sys
 from typing import Any
 
 
-def peak_rss() -> float:
-    """Peak resident memory of this process so far, in bytes: VmHWM on Linux (ru_maxrss would
-    carry a parent's peak over into a child it execs), else ru_maxrss."""
+def process_status(field: str) -> float | None:
+    """A memory line of this process's /proc status (e.g. "VmRSS"), in bytes; None where there
+    is no /proc."""
     try:
         with open("/proc/self/status", encoding="ascii") as status:
             for line in status:
-                if line.startswith("VmHWM:"):
+                if line.startswith(field + ":"):
                     return float(line.split()[1]) * 1024.0
     except OSError:
         pass
+    return None
+
+
+def peak_rss() -> float:
+    """Peak resident memory of this process so far, in bytes: VmHWM on Linux (ru_maxrss would
+    carry a parent's peak over into a child it execs), else ru_maxrss."""
+    peak = process_status("VmHWM")
+    if peak is not None:
+        return peak
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024.0  # KiB on Linux
 
 

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from timeline.bench.child_process import peak_rss, report, run_child
+from timeline.bench.child_process import peak_rss, process_status, report, run_child
 from timeline.bench.report import Table
 
 NAME = "convert-memory"
@@ -47,14 +47,7 @@ def write_wav(path: Path, seconds: float) -> None:
 
 def resident() -> float:
     """Resident memory of this process now, in bytes (VmRSS; 0 where there is no /proc)."""
-    try:
-        with open("/proc/self/status", encoding="ascii") as status:
-            for line in status:
-                if line.startswith("VmRSS:"):
-                    return float(line.split()[1]) * 1024.0
-    except OSError:
-        pass
-    return 0.0
+    return process_status("VmRSS") or 0.0
 
 
 def child(sound: Path, output: Path) -> None:
