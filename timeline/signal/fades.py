@@ -24,9 +24,11 @@ def fade_in_gain(x: np.ndarray, shape: str) -> np.ndarray:
 def fade_envelope(pos: np.ndarray, duration: float, fade_in, fade_out) -> np.ndarray | None:
     """Product of a clip's fade-in and fade-out gains at offsets pos, or None if no fades."""
     env = None
-    if fade_in.length > 0:
-        env = fade_in_gain(pos / fade_in.length, fade_in.shape)
-    if fade_out.length > 0:
-        out = fade_in_gain((duration - pos) / fade_out.length, fade_out.shape)
-        env = out if env is None else env * out
+    # a denormal fade's fraction overflows to inf: clipped to 1, past the fade, as it should be
+    with np.errstate(over="ignore"):
+        if fade_in.length > 0:
+            env = fade_in_gain(pos / fade_in.length, fade_in.shape)
+        if fade_out.length > 0:
+            out = fade_in_gain((duration - pos) / fade_out.length, fade_out.shape)
+            env = out if env is None else env * out
     return env
