@@ -20,6 +20,5 @@ def _project():
 def test_the_libm_floor_counts_one_sin_a_sine_sample_and_two_an_am_sample():
     project = _project()
     assert project.rate == 10_000.0
-    seconds, calls = libm_seconds(project, 3.0)
+    _seconds, calls = libm_seconds(project, 3.0)  # the time is the bench's to report
     assert calls == 10_000 + 2 * 5_000
-    assert seconds > 0.0
