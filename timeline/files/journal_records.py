@@ -22,7 +22,7 @@ from immutables import Map
 from timeline.errors import FieldError
 from timeline.files import project_fields as fields
 from timeline.files import projectfile as pf
-from timeline.model import Clip, PaletteTab, Project, Track, Variant
+from timeline.model import Clip, PaletteTab, Project, Track, Variant, map_changes
 from timeline.model.id_sequence import IdSequence
 from timeline.tiles import SampledTile, Tile
 
@@ -61,8 +61,8 @@ def _tile_json(tile: Tile, media: Media) -> dict[str, Any]:
 
 
 def _tiles_delta(old: Map, new: Map, media: Media) -> dict[str, Any]:
-    changed = {k: _tile_json(t, media) for k, t in new.items() if old.get(k) is not t}
-    return {"set": changed, "del": [k for k in old if k not in new]}
+    changed, gone = map_changes(old, new)
+    return {"set": {k: _tile_json(t, media) for k, t in changed.items()}, "del": list(gone)}
 
 
 def _variant_json(variant: Variant, media: Media) -> dict[str, Any]:

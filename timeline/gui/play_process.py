@@ -38,7 +38,7 @@ from typing import Any
 from immutables import Map
 
 from timeline.errors import DeviceError, HapticTimelineError
-from timeline.model import Project, Track
+from timeline.model import Project, Track, map_changes
 from timeline.plugins.device_protocol import (
     CoefficientBlock,
     Device,
@@ -88,8 +88,7 @@ def delta(old: Project | None, new: Project) -> Delta:
         return Delta(new.axis, new.rate, tracks, dict(new.tiles), ())
     if new.tiles is old.tiles:
         return Delta(new.axis, new.rate, tracks, {}, ())
-    changed = {k: v for k, v in new.tiles.items() if old.tiles.get(k) is not v}
-    gone = tuple(k for k in old.tiles if k not in new.tiles)
+    changed, gone = map_changes(old.tiles, new.tiles)
     return Delta(new.axis, new.rate, tracks, changed, gone)
 
 

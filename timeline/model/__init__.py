@@ -18,6 +18,7 @@ from timeline.model.project import (
     Project,
     Track,
     Variant,
+    map_changes,
 )
 
 __all__ = [
@@ -34,4 +35,5 @@ __all__ = [
     "STRETCH_MODES",
     "Track",
     "Variant",
+    "map_changes",
 ]

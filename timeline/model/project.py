@@ -206,6 +206,13 @@ def _frozen_map(mapping: Any) -> MappingProxyType:
     return mapping if isinstance(mapping, MappingProxyType) else MappingProxyType(dict(mapping))
 
 
+def map_changes(old: Map, new: Map) -> tuple[dict[str, Any], tuple[str, ...]]:
+    """The entries of `new` that are not the same object in `old` (the model is immutable, so an
+    unchanged entry is the same object), and the keys of `old` that `new` lacks."""
+    changed = {k: v for k, v in new.items() if old.get(k) is not v}
+    return changed, tuple(k for k in old if k not in new)
+
+
 def _tile_map(mapping: Any) -> Map:
     """Tiles by id as a persistent map: adding one to 16,000 shares the rest (O(log n))."""
     return mapping if isinstance(mapping, Map) else Map(dict(mapping))
