@@ -11,6 +11,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+from importers._bounded_read import read_at_most
 from timeline.plugins.file_formats import FormatError
 
 MAX_DURATION = 600.0  # s: longer designs are refused as hostile or broken
@@ -29,14 +30,7 @@ def json_text(path: Path, what: str) -> str:
     too_large = FormatError(
         f"{path.name} is larger than {MAX_JSON_BYTES // 2**20} MB, the most an {what} file may be"
     )
-    size = path.stat().st_size
-    if size > MAX_JSON_BYTES:
-        raise too_large
-    with path.open("rb") as file:
-        # read(n) allocates n bytes up front: ask for the size judged (+1 sees a file that grew)
-        raw = file.read(size + 1)
-    if len(raw) > MAX_JSON_BYTES:
-        raise too_large
+    raw = read_at_most(path, MAX_JSON_BYTES, too_large)
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError:

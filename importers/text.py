@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from importers import _units
+from importers._bounded_read import read_at_most
 from importers._columns import (
     AXIS_NAMES,
     finite_values,
@@ -69,13 +70,7 @@ def _decode(path: Path) -> str:
     too_large = FormatError(
         f"{path.name} is larger than {MAX_BYTES >> 30} GiB, the most a text table may be"
     )
-    size = path.stat().st_size
-    if size > MAX_BYTES:
-        raise too_large
-    with path.open("rb") as file:
-        raw = file.read(size + 1)
-    if len(raw) > MAX_BYTES:
-        raise too_large
+    raw = read_at_most(path, MAX_BYTES, too_large)
     if b"\x00" in raw:
         raise FormatError(f"{path.name} is not a text file")
     try:
