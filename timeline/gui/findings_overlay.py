@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-from PySide6.QtCore import QEvent, QObject, QPointF, QRectF, Qt, QTimer, Signal
+from PySide6.QtCore import QObject, QPointF, QRectF, Qt, QTimer, Signal
 from PySide6.QtGui import QBrush, QColor, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsItem
 
@@ -27,6 +27,7 @@ from timeline.plugins.device_protocol import DeviceInfo, Hand, open_device
 from timeline.plugins.track_kinds import track_kind
 
 from .clip_layer import runs
+from .first_paint import after_first_paint
 from .geometry import Geometry
 from .lane_scale import visible_lanes
 from .rendered_overlay import RenderedLayer, peaks_of
@@ -253,7 +254,7 @@ class FindingsOverlay(QObject):
         if painted:
             self.schedule()
         else:
-            view.viewport().installEventFilter(self)  # the first check after the first paint
+            after_first_paint(view.viewport(), self._first_check)
 
     @property
     def shades(self) -> list[Shade]:
@@ -275,12 +276,9 @@ class FindingsOverlay(QObject):
         with self._lock:
             return [v for v in self._running if v != self.version]
 
-    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
-        if event.type() == QEvent.Type.Paint:
-            watched.removeEventFilter(self)
-            if self.report is None and not self._timer.isActive():
-                self.schedule()
-        return False
+    def _first_check(self) -> None:
+        if self.report is None and not self._timer.isActive():
+            self.schedule()
 
     def schedule(self) -> None:
         """Check again once edits pause; the check under way (now stale) stops. An edit made
