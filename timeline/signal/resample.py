@@ -29,7 +29,9 @@ _MAX_MARGIN_OUTPUT = 2**20
 # 2^16, 52 s for 1e6 under load: a 100-sample AIFF at 1e9 Hz rendered at 1 kHz), and a source
 # sampled 4096 times faster than the output holds little a box average would keep wrongly.
 _MAX_SOXR_STEP = 2**12
-_DIRECT_CHUNK = 2**13  # output samples per pass of the direct sinc (64 taps each: 4 MiB)
+_SINC_PHASES = 2**12  # the sinc table's points per source sample
+_KNOT_ROWS = 256  # source samples whose knots (_SINC_PHASES each) one pass of the direct sinc sums
+_UPSAMPLE_CHUNK = 2**18  # and at most this many outputs per pass
 _WHOLE_BYTES = 64 * 2**20  # resampled recordings kept, least recently used dropped first
 
 
@@ -206,31 +208,55 @@ def forget_resampled() -> None:
 
 def _sinc_upsample(data: np.ndarray, start: float, step: float, n: int) -> np.ndarray:
     """data band-limited to its own Nyquist frequency at source indices start + i*step (step
-    well below 1), by a Kaiser-windowed sinc of _SINC_HALF taps either side: n * 64 products."""
+    well below 1), by the Kaiser-windowed sinc of _SINC_HALF taps either side, tabulated.
+
+    The taps are the table interpolated linearly, and the table's points lie _SINC_PHASES to a
+    source sample, so the sum is a piecewise-linear function of the position with its knots on
+    that grid: the knots the outputs fall between are summed once (64 products each, one matrix
+    product over the source samples' windows) and the outputs interpolated between them. Fewer
+    knots than outputs when upsampling by more than _SINC_PHASES (every call from _band_limited),
+    so the work is about one interpolation per output, whatever the ratio.
+    """
     out = np.zeros(n)
     # only outputs within the filter's reach of the samples can be non-zero
     first = max(0, math.ceil((-_SINC_HALF - start) / step))
     last = min(n, math.floor((len(data) - 1 + _SINC_HALF - start) / step) + 1)
-    k = np.arange(-_SINC_HALF + 1, _SINC_HALF + 1)
-    for lo in range(first, last, _DIRECT_CHUNK):
-        x = start + step * np.arange(lo, min(lo + _DIRECT_CHUNK, last))
-        base = np.floor(x).astype(np.int64)
-        index = base[:, None] + k[None, :]
-        taps = np.interp(x[:, None] - index, *_sinc_table())
-        inside = (index >= 0) & (index < len(data))
-        values = np.where(inside, data[np.clip(index, 0, len(data) - 1)], 0.0)
-        out[lo : lo + len(x)] = np.einsum("ij,ij->i", taps, values)
+    # outputs per pass: at most _UPSAMPLE_CHUNK, spanning at most _KNOT_ROWS source samples
+    chunk = max(1, int(min(_UPSAMPLE_CHUNK, _KNOT_ROWS / step)))
+    for lo in range(first, last, chunk):
+        x = np.arange(lo, min(lo + chunk, last), dtype=np.float64)
+        x *= step
+        x += start  # start + step * i, as numpy's two roundings
+        out[lo : lo + len(x)] = _between_knots(data, x)
     return out
 
 
+def _between_knots(data: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """The windowed-sinc sum at ascending source positions x, interpolated between its knots."""
+    row0 = math.floor(x[0])
+    rows = math.floor(x[-1]) + 2 - row0  # the last output's right knot starts the row after
+    # window[r, j] = data[row0 + r - _SINC_HALF + 1 + j], zero outside the data
+    span = _take(data, row0 - _SINC_HALF + 1, rows + 2 * _SINC_HALF - 1).astype(np.float64)
+    window = np.lib.stride_tricks.sliding_window_view(span, 2 * _SINC_HALF).copy()  # for BLAS
+    # knots[r * _SINC_PHASES + m]: the sum at source position row0 + r + m / _SINC_PHASES
+    knots = (window @ _sinc_phases()).ravel()
+    at = row0 + np.arange(knots.size) / _SINC_PHASES  # exact: a power of two
+    return np.interp(x, at, knots)
+
+
 @cache
-def _sinc_table() -> tuple[np.ndarray, np.ndarray]:
-    """The windowed sinc (Kaiser, beta _SINC_BETA, over +-_SINC_HALF) at 2**18 + 1 distances,
-    for linear interpolation (within 1e-7 of the exact taps)."""
-    d = np.linspace(-_SINC_HALF, _SINC_HALF, 2**18 + 1)
+def _sinc_phases() -> np.ndarray:
+    """The windowed sinc (Kaiser, beta _SINC_BETA, over +-_SINC_HALF) tabulated _SINC_PHASES
+    times a sample for linear interpolation (within 1e-7 of the exact taps), as a matrix: for
+    knots m / _SINC_PHASES past a whole source index b, row j, column m holds the tap of sample
+    b - _SINC_HALF + 1 + j, at the distance _SINC_HALF - 1 - j + m / _SINC_PHASES."""
+    d = np.arange(-_SINC_HALF * _SINC_PHASES, _SINC_HALF * _SINC_PHASES) / _SINC_PHASES
     r = d / _SINC_HALF
     window = np.i0(_SINC_BETA * np.sqrt(np.clip(1.0 - r * r, 0.0, None))) / np.i0(_SINC_BETA)
-    return d, np.sinc(d) * window
+    table = np.sinc(d) * window  # from -_SINC_HALF up to (not at) _SINC_HALF
+    phases = np.ascontiguousarray(table.reshape(2 * _SINC_HALF, _SINC_PHASES)[::-1])
+    phases.setflags(write=False)
+    return phases
 
 
 @cache
