@@ -36,15 +36,14 @@ def launch(path: str | None = None) -> tuple[QApplication, MainWindow]:
     # worker threads start spinning as it loads and cost the first paint about 60 ms of CPU
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     collecting = gc.isenabled()
-    gc.disable()  # until the first paint (see _collect_after_first_paint)
+    gc.disable()  # until the first paint (see _after_first_paint)
     try:
         app, window = _shown(path)
     except BaseException:
         if collecting:
             gc.enable()
         raise
-    if collecting:
-        _collect_after_first_paint(window)
+    _after_first_paint(window, collecting)
     return app, window
 
 
@@ -67,20 +66,22 @@ def _shown(path: str | None) -> tuple[QApplication, MainWindow]:
         fit_to_screen(window, screen.availableGeometry(), keep_place=window.restored)
     window.show()
     window.view.fit()
-    window.offer_recovery()
     return app, window
 
 
-def _collect_after_first_paint(window: MainWindow) -> None:
-    """Turn the cyclic garbage collector back on once the window has painted.
+def _after_first_paint(window: MainWindow, collecting: bool) -> None:
+    """What waits for the window's first paint: a crashed session's autosave offered (the
+    autosave folder read), and the cyclic garbage collector turned back on if it was.
 
     Launching allocates some hundred thousand objects (modules, Qt enums, the project), none
     of them garbage; the collector ran about 90 times over them before the first paint
-    (25-45 ms). Reference counting frees everything as usual meanwhile.
+    (25-45 ms of CPU). Reference counting frees everything as usual meanwhile.
     """
     from .first_paint import after_first_paint
 
-    after_first_paint(window.view.viewport(), gc.enable)
+    after_first_paint(window.view.viewport(), window.offer_recovery)
+    if collecting:
+        after_first_paint(window.view.viewport(), gc.enable)
 
 
 def fit_to_screen(window: QWidget, available: QRect, keep_place: bool = False) -> None:
