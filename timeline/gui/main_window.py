@@ -24,7 +24,6 @@ from timeline.edits.vibration import with_emphasis
 from timeline.errors import HapticTimelineError
 from timeline.files import projectfile
 from timeline.model import Project
-from timeline.plugins.file_formats import all_formats
 
 from . import window_state
 from .arrange import Arrange
@@ -750,6 +749,8 @@ class MainWindow(QMainWindow):
         return self.save_to(path)
 
     def _extensions(self, key: str) -> str:
+        from timeline.plugins.file_formats import all_formats
+
         found = sorted({e for f in all_formats().values() if getattr(f, key) for e in f.extensions})
         return " ".join(f"*{e}" for e in found)
 
