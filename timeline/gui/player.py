@@ -508,12 +508,13 @@ class Player(QObject):
     def stop(self) -> None:
         """Stop playing and wait for the device to finish its block; where it got to is not
         reported after this (the playhead stays where a stop or a scrub left it)."""
-        from .live_stream import LiveStream
-
         self._halt.set()
         self.sound.stop()
-        if isinstance(self.stream, LiveStream):
-            self.stream.stop_stream()
+        if self.stream is not None:  # (the live stream's module loads with the first stream)
+            from .live_stream import LiveStream
+
+            if isinstance(self.stream, LiveStream):
+                self.stream.stop_stream()
         if self._remote is not None:  # still playing in the play process
             self._remote.stop()
             self._heard(self._remote.wait_done(STOP_SECONDS))
