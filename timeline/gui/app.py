@@ -8,6 +8,14 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+# Before numpy loads, as the command line does (cli.main.one_blas_thread): OpenBLAS's worker
+# threads start spinning as it loads and cost the first paint about 60 ms of CPU.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+# Imported before PySide6, whose import hook would otherwise read the source of numpy's and the
+# tiles' inner modules ("The editor at 20,000 clips" in docs/performance.md).
+from timeline.files import projectfile  # noqa: E402
+
 if TYPE_CHECKING:
     from PySide6.QtCore import QRect
     from PySide6.QtWidgets import QApplication, QWidget
@@ -32,9 +40,6 @@ def launch(path: str | None = None) -> tuple[QApplication, MainWindow]:
     on the way to the first paint loads scipy.signal or numba: the findings check starts after
     it (findings_overlay) and the sound analysis with the first sound converted.
     """
-    # before numpy loads, as the command line does (cli.main.one_blas_thread): OpenBLAS's
-    # worker threads start spinning as it loads and cost the first paint about 60 ms of CPU
-    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     collecting = gc.isenabled()
     gc.disable()  # until the first paint (see _after_first_paint)
     try:
@@ -50,8 +55,6 @@ def launch(path: str | None = None) -> tuple[QApplication, MainWindow]:
 def _shown(path: str | None) -> tuple[QApplication, MainWindow]:
     """The project loaded and its window shown."""
     from PySide6.QtWidgets import QApplication
-
-    from timeline.files import projectfile
 
     from .main_window import MainWindow
 
