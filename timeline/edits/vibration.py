@@ -32,15 +32,13 @@ from __future__ import annotations
 from bisect import bisect_left, bisect_right
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, overload
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 
 from timeline import edits
-from timeline.analysis.breakpoints import clip_points, envelope_breakpoints, simplify, trim_silence
 from timeline.errors import EditError
 from timeline.model import DEFAULT_TIME_RATE, Clip, Project, Track
-from timeline.plugins.file_formats import Imported, Placement, TrackInfo
 from timeline.plugins.track_kinds import track_kind
 from timeline.rendering import mixer
 from timeline.signal.fades import fade_envelope
@@ -58,6 +56,9 @@ from timeline.signal.vibration_design import (
 )
 from timeline.tiles import GeneratorTile
 from timeline.tiles.vibration_tile import VibrationTile
+
+if TYPE_CHECKING:  # a reader's types and the breakpoints load where used (not for a first paint)
+    from timeline.plugins.file_formats import Imported
 
 __all__ = [
     "DRIVE",
@@ -120,6 +121,8 @@ def design_placements(
     design: VibrationDesign, name: str, source: str, sharpness: str, notes: tuple[str, ...] = ()
 ) -> Imported:
     """What a reader of a design file returns: place_design's clips as placements."""
+    from timeline.plugins.file_formats import Imported, Placement, TrackInfo
+
     envelopes, accents = _split(design)
     placements = [Placement(VibrationTile(envelopes, name, source, sharpness), kind=DRIVE)]
     tiles: dict[tuple[float, float], GeneratorTile] = {}  # equal emphases share one tile
@@ -396,6 +399,8 @@ def _faded(amp: list[tuple[float, float]], m: _Mapping) -> list[tuple[float, flo
     v = np.concatenate([bv, np.interp(grid, bt, bv)])
     order = np.argsort(t, kind="stable")  # breakpoints first, so steps keep their order
     t, v = t[order], v[order]
+    from timeline.analysis.breakpoints import simplify
+
     return simplify(t, v * m.fade(t), EDIT_TOLERANCE)
 
 
@@ -448,6 +453,8 @@ def _analysed(
     project: Project, drive: list[Track], accents: dict[str, Emphasis], rate: float | None
 ) -> VibrationDesign:
     """Render the drive tracks (emphasis clips apart) and analyse them into breakpoints."""
+    from timeline.analysis.breakpoints import clip_points, envelope_breakpoints, trim_silence
+
     rate = float(rate or project.rate or DEFAULT_TIME_RATE)
     rest = edits.remove_clips(project, list(accents))
     duration = max(c.end for t in drive for c in t.clips)

@@ -7,13 +7,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from PySide6.QtCore import QSize, Qt
-from PySide6.QtGui import QAction, QCloseEvent, QCursor, QKeySequence, QPalette
+from PySide6.QtGui import QCloseEvent, QPalette
 from PySide6.QtWidgets import (
     QApplication,
     QFrame,
     QGridLayout,
     QMainWindow,
-    QMenu,
     QScrollArea,
     QSplitter,
     QWidget,
@@ -25,11 +24,9 @@ from timeline.edits.vibration import with_emphasis
 from timeline.errors import HapticTimelineError
 from timeline.files import projectfile
 from timeline.model import Project
-from timeline.plugins.file_formats import all_formats
 
 from . import window_state
 from .arrange import Arrange
-from .autosave import Autosaver, Recoverable, recoverable
 from .clipboard import ClipClipboard
 from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
@@ -47,8 +44,10 @@ from .track_header import HeaderColumn
 from .transport import Transport
 
 if TYPE_CHECKING:
-    from PySide6.QtWidgets import QMessageBox
+    from PySide6.QtGui import QAction, QKeySequence
+    from PySide6.QtWidgets import QMenu, QMessageBox
 
+    from .autosave import Autosaver, Recoverable
     from .findings_overlay import FindingsOverlay
     from .help import HelpMenu
     from .inspector import Inspector
@@ -154,14 +153,13 @@ class MainWindow(QMainWindow):
         self.clip_actions: list[QAction] = []
         self._panels: tuple[Palette, WaveformEditor, Inspector] | None = None
         self._findings: FindingsOverlay | None = None
+        self._autosaver: Autosaver | None = None
+        self._opened = path if project is not None else None  # the journal starts from it
         self._painted = False
         self._build(panels_after_paint)
-        self.autosaver = Autosaver(self.doc)
-        if project is not None and path is not None:
-            self.autosaver.on_disk(path)  # the journal starts from the file opened
-        self.autosaver.failed.connect(lambda text: self.messages.show_message(text, "error"))
         if not panels_after_paint:
             self.build_panels()
+            self._start_autosave()
         self.transport.device.currentTextChanged.connect(lambda _: self.findings.schedule())
         self.transport.hand_changed.connect(lambda _: self.findings.hand_changed())
         self.doc.changed.connect(self._changed)
@@ -241,8 +239,29 @@ class MainWindow(QMainWindow):
 
     def _first_painted(self) -> None:
         self._painted = True
+        self._start_autosave()
         self.headers.build_rest()
         self.build_panels()
+
+    @property
+    def autosaver(self) -> Autosaver:
+        """The document's autosave journal (started now if it was not yet: after the first
+        paint when the window was made with `panels_after_paint`)."""
+        self._start_autosave()
+        assert self._autosaver is not None
+        return self._autosaver
+
+    def _start_autosave(self) -> None:
+        if self._autosaver is not None:
+            return
+        from .autosave import Autosaver  # platformdirs and the journal: after the first paint
+
+        self._autosaver = saver = Autosaver(self.doc)
+        if self._opened is not None:
+            saver.on_disk(self._opened)
+        saver.failed.connect(lambda text: self.messages.show_message(text, "error"))
+        if self.doc.modified:  # changed before the journal was there: recorded now
+            saver.save_now()
 
     @property
     def findings(self) -> FindingsOverlay:
@@ -315,6 +334,8 @@ class MainWindow(QMainWindow):
         shortcut: str | QKeySequence | QKeySequence.StandardKey = "",
         tip: str = "",
     ) -> QAction:
+        from PySide6.QtGui import QAction, QKeySequence  # the menus' actions: after the first paint
+
         action = QAction(text, self)
         if shortcut:
             action.setShortcut(QKeySequence(shortcut))
@@ -325,6 +346,8 @@ class MainWindow(QMainWindow):
         return action
 
     def _menus(self) -> None:
+        from PySide6.QtGui import QKeySequence
+
         from .step_menus import fill_history, fill_variants  # the menus come after the first paint
 
         file = self.menus["file"]
@@ -726,6 +749,8 @@ class MainWindow(QMainWindow):
         return self.save_to(path)
 
     def _extensions(self, key: str) -> str:
+        from timeline.plugins.file_formats import all_formats
+
         found = sorted({e for f in all_formats().values() if getattr(f, key) for e in f.extensions})
         return " ".join(f"*{e}" for e in found)
 
@@ -744,6 +769,8 @@ class MainWindow(QMainWindow):
         project = self.doc.project
         if self.doc.selected_clips:
             return project.find_clip(self.doc.selected_clips[0])[0].id
+        from PySide6.QtGui import QCursor
+
         pointer = self.view.viewport().mapFromGlobal(QCursor.pos())
         if self.view.viewport().rect().contains(pointer):
             track = self.view.track_at(self.view.mapToScene(pointer).y())
@@ -852,6 +879,8 @@ class MainWindow(QMainWindow):
 
     def offer_recovery(self) -> list[Recoverable]:
         """If a crashed session left an autosave, offer it in the message bar."""
+        from .autosave import recoverable
+
         found = recoverable()
         self.autosaver.offered = found[:1]  # removed at a clean close if not recovered
         if found:
@@ -908,5 +937,6 @@ class MainWindow(QMainWindow):
         self.player.close()
         if self._findings is not None:
             self._findings.close()
-        self.autosaver.close()
+        if self._autosaver is not None:
+            self._autosaver.close()
         event.accept()

@@ -41,15 +41,16 @@ from PySide6.QtCore import QCoreApplication, QEvent, QObject, QTimer, Signal
 from timeline.errors import HapticTimelineError
 from timeline.model import Project
 from timeline.plugins import discovery
-from timeline.plugins.device_protocol import Device, Hand, Lateness, LiveTelemetry, open_device
-from timeline.rendering import playback
+from timeline.plugins.device_protocol import Hand
 from timeline.rendering.mixer import Mixer
 from timeline.rendering.sound_out import SoundOut
 
 from .job_errors import unexpected
-from .live_stream import CHUNK_SECONDS, LiveStream, LiveTables
 
 if TYPE_CHECKING:  # the play process's module (and multiprocessing) loads with its first start
+    from timeline.plugins.device_protocol import Device, Lateness, LiveTelemetry
+
+    from .live_stream import LiveStream, LiveTables  # with the warm-up, after the first paint
     from .play_process import PlayProcess, RemoteStream
 
 HOLD_SECONDS = 600.0  # a position project played without turning plays this long unless stopped
@@ -195,6 +196,8 @@ class Player(QObject):
 
                     opened: Device = ChildDevice(_Shared.get(self.device_name))
                 else:
+                    from timeline.plugins.device_protocol import open_device
+
                     opened = open_device(self.device_name)
                 self.device = self._opened = opened
             return self.device
@@ -280,6 +283,8 @@ class Player(QObject):
                 self._handed.set()
 
     def _warm_up(self, project: Project, start: float) -> None:
+        from .live_stream import CHUNK_SECONDS, LiveStream
+
         try:
             device = self._open()
             if self._own_process(device, project):
@@ -317,6 +322,10 @@ class Player(QObject):
         `origin` (rad) is where the knob starts in a position project (its first rest point
         by default).
         """
+        from timeline.rendering import playback
+
+        from .live_stream import LiveStream, LiveTables
+
         self.stop()
         asked = time.perf_counter()
         if self._warm_source is not None:  # Play before the editor was idle: warm up now
@@ -424,6 +433,8 @@ class Player(QObject):
 
     def _part(self, part: LiveTelemetry) -> None:
         if len(part) and self.tables is not None:
+            from timeline.plugins.device_protocol import LiveTelemetry
+
             part = LiveTelemetry(part.time, self._origin + part.angle, part.torque)
             self._position = float(part.angle[-1])
         if len(part):
@@ -499,8 +510,11 @@ class Player(QObject):
         reported after this (the playhead stays where a stop or a scrub left it)."""
         self._halt.set()
         self.sound.stop()
-        if isinstance(self.stream, LiveStream):
-            self.stream.stop_stream()
+        if self.stream is not None:  # (the live stream's module loads with the first stream)
+            from .live_stream import LiveStream
+
+            if isinstance(self.stream, LiveStream):
+                self.stream.stop_stream()
         if self._remote is not None:  # still playing in the play process
             self._remote.stop()
             self._heard(self._remote.wait_done(STOP_SECONDS))
