@@ -38,6 +38,7 @@ class ClipPage(QWidget):
         self.stretch = NumberField(self._set_stretch, 4, prefix="x", bounds=(1e-4, 1e4))
         self.stretch.setToolTip("stretch factor (squeeze resamples, repeat loops); type and Enter")
         self.mirror = NumberField(self._set_mirror, 3, bounds=(-10.0, 10.0))
+        self._axis: str | None = None  # the axis the fields' formats are set for
         form = QFormLayout(self)
         form.setContentsMargins(0, 0, 0, 0)
         form.addRow(self.title)
@@ -66,7 +67,8 @@ class ClipPage(QWidget):
         return project.find_clip(self.doc.selected_clips[0])
 
     def refresh(self) -> None:
-        """Show the clip's current values (in s, or degrees in a position project)."""
+        """Show the clip's current values (in s, or degrees in a position project); a drag
+        changes one or two of them, so only what differs from what is shown is set."""
         found = self.found()
         if found is None:
             return
@@ -78,24 +80,31 @@ class ClipPage(QWidget):
         extra = f" (+{more})" if more else ""
         # one short line: a wrapping label would squeeze the fields in the scroll area
         quiet.set_text(self.title, f"<b>clip</b> · {name}{extra}")
-        self.title.setToolTip(f"a clip of {name} on {track.name}")
-        for box in (self.start, self.length, self.fade_in, self.fade_out):
-            quiet.set_format(box, decimals=AXIS_DECIMALS[axis], suffix=axis_suffix(axis))
-        quiet.set_format(self.start, minimum=0.0 if axis == "time" else -1e9)
+        _set_tip(self.title, f"a clip of {name} on {track.name}")
+        if axis != self._axis:
+            self._axis = axis
+            for box in (self.start, self.length, self.fade_in, self.fade_out):
+                quiet.set_format(box, decimals=AXIS_DECIMALS[axis], suffix=axis_suffix(axis))
+            quiet.set_format(self.start, minimum=0.0 if axis == "time" else -1e9)
         self.start.show_value(shown_axis(clip.start, axis))
         self.length.show_value(shown_axis(clip.duration, axis))
         self.gain.show_value(clip.gain)
         self.db.show_value(20 * math.log10(abs(clip.gain)) if clip.gain else MIN_DB)
         self.fade_in.show_value(shown_axis(clip.fade_in.length, axis))
         self.fade_out.show_value(shown_axis(clip.fade_out.length, axis))
-        self.shape_in.setCurrentText(clip.fade_in.shape)
-        self.shape_out.setCurrentText(clip.fade_out.shape)
+        for box, shape in (
+            (self.shape_in, clip.fade_in.shape),
+            (self.shape_out, clip.fade_out.shape),
+        ):
+            if box.currentText() != shape:
+                box.setCurrentText(shape)
         self.stretch.show_value(clip.stretch)
         quiet.set_format(self.stretch, suffix=" (loops)" if clip.stretch_mode == "repeat" else "")
         self.mirror.show_value(clip.pivot)
-        self.mirror.setToolTip(
+        _set_tip(
+            self.mirror,
             "the horizontal line amplitude drags and inversion turn about, in the clip's values "
-            f"(1 = full scale: {full_scale_text(track, 1.0)} on {track.name}); type and Enter"
+            f"(1 = full scale: {full_scale_text(track, 1.0)} on {track.name}); type and Enter",
         )
 
     # --- edits (one undo step each) --------------------------------------------------------
@@ -143,6 +152,12 @@ class ClipPage(QWidget):
 
     def _set_mirror(self, value: float) -> None:
         self._apply("mirror line", f"{value:g}", edits.set_pivot, value)
+
+
+def _set_tip(widget: QWidget, text: str) -> None:
+    """Set a tooltip where it differs (setting one sends the widget an event even when equal)."""
+    if widget.toolTip() != text:
+        widget.setToolTip(text)
 
 
 def _start_at(project: Project, clip_id: str, start: float) -> Project:
