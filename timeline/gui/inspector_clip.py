@@ -5,6 +5,7 @@ through the same edits as the drags, so it is felt at once while playing."""
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 
 from PySide6.QtWidgets import QComboBox, QFormLayout, QLabel, QWidget
 
@@ -19,6 +20,7 @@ from .inspector_fields import AXIS_DECIMALS, NumberField, axis_suffix, axis_valu
 from .lane_scale import full_scale_text
 
 MIN_DB = -120.0
+_NOT_START = tuple(f.name for f in fields(Clip) if f.name != "start")
 
 
 class ClipPage(QWidget):
@@ -39,6 +41,7 @@ class ClipPage(QWidget):
         self.stretch.setToolTip("stretch factor (squeeze resamples, repeat loops); type and Enter")
         self.mirror = NumberField(self._set_mirror, 3, bounds=(-10.0, 10.0))
         self._axis: str | None = None  # the axis the fields' formats are set for
+        self._rest: tuple[object, ...] = ()  # all the fields show but the start, as shown
         form = QFormLayout(self)
         form.setContentsMargins(0, 0, 0, 0)
         form.addRow(self.title)
@@ -77,6 +80,12 @@ class ClipPage(QWidget):
         axis = project.axis
         name = project.tile(clip.tile_id).name
         more = len(self.doc.selected_clips) - 1
+        rest = (*(getattr(clip, f) for f in _NOT_START), track.name, track.kind, track.full_scale,
+                name, more, axis)  # fmt: skip
+        if rest == self._rest:  # a move along the track: only the start changed
+            self.start.show_value(shown_axis(clip.start, axis))
+            return
+        self._rest = rest
         extra = f" (+{more})" if more else ""
         # one short line: a wrapping label would squeeze the fields in the scroll area
         quiet.set_text(self.title, f"<b>clip</b> · {name}{extra}")
@@ -115,7 +124,8 @@ class ClipPage(QWidget):
             return
         name = self.doc.project.tile(found[1].tile_id).name
         self.doc.apply(f"set {what} of '{name}' to {shown}", edit, found[1].id, *args)
-        self.refresh()  # a refused value goes back to the clip's
+        self._rest = ()  # every field shown again: a refused value goes back to the clip's
+        self.refresh()
 
     def _set_start(self, shown: float) -> None:
         axis = self.doc.project.axis
