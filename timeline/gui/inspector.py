@@ -98,6 +98,7 @@ class Inspector(QWidget):
         self.boxes: dict[str, QDoubleSpinBox] = {}
         self.labels: dict[str, ScrubLabel] = {}
         self._shown: tuple[object, ...] = ()
+        self._tile_shown: tuple[object, str] = (None, "")  # the tile object shown, and axis
         inner = QWidget()
         layout = QVBoxLayout(inner)
         layout.setContentsMargins(4, 2, 4, 2)
@@ -145,6 +146,9 @@ class Inspector(QWidget):
         tile_id = self.doc.selected_tile
         tile = self.doc.project.tiles.get(tile_id) if tile_id else None
         axis = self.doc.project.axis
+        if tile is not None and self._tile_shown[0] is tile and self._tile_shown[1] == axis:
+            return  # tiles are immutable: the same object shows the same fields (a clip drag)
+        self._tile_shown = (tile, axis)
         names = [] if tile is None else ["length"]
         if isinstance(tile, GeneratorTile):
             names += [k for k, _ in tile.params]
@@ -202,6 +206,7 @@ class Inspector(QWidget):
         tile_id = self.doc.selected_tile
         if tile_id is None:
             return
+        self._tile_shown = (None, "")  # shown again after: a refused value goes back to the tile's
         axis = self.doc.project.axis
         tile = self.doc.project.tiles[tile_id]
         value = shown / self._unit(name, axis, tile)[0]

@@ -5,6 +5,7 @@ through the same edits as the drags, so it is felt at once while playing."""
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 
 from PySide6.QtWidgets import QComboBox, QFormLayout, QLabel, QWidget
 
@@ -19,6 +20,7 @@ from .inspector_fields import AXIS_DECIMALS, NumberField, axis_suffix, axis_valu
 from .lane_scale import full_scale_text
 
 MIN_DB = -120.0
+_NOT_START = tuple(f.name for f in fields(Clip) if f.name != "start")
 
 
 class ClipPage(QWidget):
@@ -38,6 +40,8 @@ class ClipPage(QWidget):
         self.stretch = NumberField(self._set_stretch, 4, prefix="x", bounds=(1e-4, 1e4))
         self.stretch.setToolTip("stretch factor (squeeze resamples, repeat loops); type and Enter")
         self.mirror = NumberField(self._set_mirror, 3, bounds=(-10.0, 10.0))
+        self._axis: str | None = None  # the axis the fields' formats are set for
+        self._rest: tuple[object, ...] = ()  # all the fields show but the start, as shown
         form = QFormLayout(self)
         form.setContentsMargins(0, 0, 0, 0)
         form.addRow(self.title)
@@ -66,7 +70,8 @@ class ClipPage(QWidget):
         return project.find_clip(self.doc.selected_clips[0])
 
     def refresh(self) -> None:
-        """Show the clip's current values (in s, or degrees in a position project)."""
+        """Show the clip's current values (in s, or degrees in a position project); a drag
+        changes one or two of them, so only what differs from what is shown is set."""
         found = self.found()
         if found is None:
             return
@@ -75,27 +80,40 @@ class ClipPage(QWidget):
         axis = project.axis
         name = project.tile(clip.tile_id).name
         more = len(self.doc.selected_clips) - 1
+        rest = (*(getattr(clip, f) for f in _NOT_START), track.name, track.kind, track.full_scale,
+                name, more, axis)  # fmt: skip
+        if rest == self._rest:  # a move along the track: only the start changed
+            self.start.show_value(shown_axis(clip.start, axis))
+            return
+        self._rest = rest
         extra = f" (+{more})" if more else ""
         # one short line: a wrapping label would squeeze the fields in the scroll area
         quiet.set_text(self.title, f"<b>clip</b> · {name}{extra}")
-        self.title.setToolTip(f"a clip of {name} on {track.name}")
-        for box in (self.start, self.length, self.fade_in, self.fade_out):
-            quiet.set_format(box, decimals=AXIS_DECIMALS[axis], suffix=axis_suffix(axis))
-        quiet.set_format(self.start, minimum=0.0 if axis == "time" else -1e9)
+        _set_tip(self.title, f"a clip of {name} on {track.name}")
+        if axis != self._axis:
+            self._axis = axis
+            for box in (self.start, self.length, self.fade_in, self.fade_out):
+                quiet.set_format(box, decimals=AXIS_DECIMALS[axis], suffix=axis_suffix(axis))
+            quiet.set_format(self.start, minimum=0.0 if axis == "time" else -1e9)
         self.start.show_value(shown_axis(clip.start, axis))
         self.length.show_value(shown_axis(clip.duration, axis))
         self.gain.show_value(clip.gain)
         self.db.show_value(20 * math.log10(abs(clip.gain)) if clip.gain else MIN_DB)
         self.fade_in.show_value(shown_axis(clip.fade_in.length, axis))
         self.fade_out.show_value(shown_axis(clip.fade_out.length, axis))
-        self.shape_in.setCurrentText(clip.fade_in.shape)
-        self.shape_out.setCurrentText(clip.fade_out.shape)
+        for box, shape in (
+            (self.shape_in, clip.fade_in.shape),
+            (self.shape_out, clip.fade_out.shape),
+        ):
+            if box.currentText() != shape:
+                box.setCurrentText(shape)
         self.stretch.show_value(clip.stretch)
         quiet.set_format(self.stretch, suffix=" (loops)" if clip.stretch_mode == "repeat" else "")
         self.mirror.show_value(clip.pivot)
-        self.mirror.setToolTip(
+        _set_tip(
+            self.mirror,
             "the horizontal line amplitude drags and inversion turn about, in the clip's values "
-            f"(1 = full scale: {full_scale_text(track, 1.0)} on {track.name}); type and Enter"
+            f"(1 = full scale: {full_scale_text(track, 1.0)} on {track.name}); type and Enter",
         )
 
     # --- edits (one undo step each) --------------------------------------------------------
@@ -106,7 +124,8 @@ class ClipPage(QWidget):
             return
         name = self.doc.project.tile(found[1].tile_id).name
         self.doc.apply(f"set {what} of '{name}' to {shown}", edit, found[1].id, *args)
-        self.refresh()  # a refused value goes back to the clip's
+        self._rest = ()  # every field shown again: a refused value goes back to the clip's
+        self.refresh()
 
     def _set_start(self, shown: float) -> None:
         axis = self.doc.project.axis
@@ -143,6 +162,12 @@ class ClipPage(QWidget):
 
     def _set_mirror(self, value: float) -> None:
         self._apply("mirror line", f"{value:g}", edits.set_pivot, value)
+
+
+def _set_tip(widget: QWidget, text: str) -> None:
+    """Set a tooltip where it differs (setting one sends the widget an event even when equal)."""
+    if widget.toolTip() != text:
+        widget.setToolTip(text)
 
 
 def _start_at(project: Project, clip_id: str, start: float) -> Project:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtCore import QPoint, QPointF, Qt, Signal
+from PySide6.QtCore import QEvent, QObject, QPoint, QPointF, Qt, Signal
 from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QWheelEvent
 from PySide6.QtWidgets import QGraphicsView, QLabel, QMenu, QWidget
 
@@ -46,6 +46,18 @@ CURSORS = {
 }
 
 
+class _NoLayoutRequests(QObject):
+    """Drops the layout requests a viewport gets when the drag readout's text changes size.
+
+    The viewport lays nothing out (the readout is placed by hand), but a layout request to it
+    makes the scroll area lay out its scroll bars again and repaint them and its frame: on
+    every mouse move of a drag whose readout text changed width.
+    """
+
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
+        return event.type() == QEvent.Type.LayoutRequest
+
+
 class TimelineView(QGraphicsView):
     """Tracks as lanes of clips; every mouse gesture becomes one undoable edit."""
 
@@ -69,6 +81,8 @@ class TimelineView(QGraphicsView):
         # a viewport made in Python, as Qt's own would be: PySide6 knows its type, where one made
         # in C++ makes it look through every widget class (and create their enums, ~20 ms) first
         self.setViewport(QWidget())
+        self._no_layout = _NoLayoutRequests(self)
+        self.viewport().installEventFilter(self._no_layout)
         self.readout = QLabel(self.viewport())
         self.readout.setStyleSheet(
             "background: rgba(255, 255, 230, 235); border: 1px solid #999; padding: 1px 4px;"
@@ -118,12 +132,12 @@ class TimelineView(QGraphicsView):
 
     def snap(self, u: float, dragged: list[str]) -> float:
         """Snap an axis position to clip edges or the grid, if snapping is on; the snap line
-        shows where it snapped."""
+        is placed where it snapped (shown when the gesture's move commits it)."""
         if not self.snapping:
             return u
         nearest = self._edges.nearest(self.doc.project, u, dragged)
         snapped = snap(u, [nearest], self.scene().grid_step(), self.lane_geometry.u(SNAP_PX))
-        self.snap_line.show_at(snapped if snapped != u else None)
+        self.snap_line.place(snapped if snapped != u else None)
         return snapped
 
     # --- zoom and scroll -------------------------------------------------------------------

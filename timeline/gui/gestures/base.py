@@ -32,6 +32,7 @@ class Gesture:
             return
         self.dragged = True
         self.moved(pos)
+        self.view.snap_line.commit()  # a move that applied no edit
         self.show_readout(pos)
 
     def show_readout(self, pos: QPointF) -> None:
@@ -55,7 +56,11 @@ class Gesture:
         self.move(pos)
 
     def apply(self, edit, *args, **kwargs) -> object:
-        """Apply an edit to the starting state, merged into this drag's single undo step."""
+        """Apply an edit to the starting state, merged into this drag's single undo step.
+
+        The snap line goes where the move's snaps placed it first: its strip and the edited
+        clips are then repainted in one pass."""
+        self.view.snap_line.commit()
         return self.doc.apply(
             self.label, edit, *args, base=self.base, merge_key=self.merge_key, **kwargs
         )

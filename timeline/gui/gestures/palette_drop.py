@@ -58,6 +58,7 @@ class PaletteDrop:
         """The target track id (None off the lanes) and the snapped start for a scene position."""
         track = self.view.track_at(pos.y())
         start = self.view.snap(max(0.0, self.view.lane_geometry.u(pos.x())), [])
+        self.view.snap_line.commit()
         return (track.id if track else None), start
 
     def hover(self, pos: QPointF) -> bool:
