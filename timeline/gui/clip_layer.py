@@ -81,8 +81,8 @@ def runs(left: np.ndarray, right: np.ndarray) -> list[tuple[float, float]]:
     order = np.argsort(left, kind="stable")
     a, b = left[order], np.maximum.accumulate(right[order])
     breaks = np.flatnonzero(a[1:] > b[:-1]) + 1
-    starts = np.r_[0, breaks]
-    stops = np.r_[breaks - 1, a.size - 1]
+    starts = np.concatenate(([0], breaks))  # not np.r_: 10x the cost at this size
+    stops = np.concatenate((breaks - 1, [a.size - 1]))
     return list(zip(a[starts].tolist(), b[stops].tolist(), strict=True))
 
 
@@ -190,18 +190,10 @@ class ClipLayer(QGraphicsItem):
         painter.setBrush(QBrush(colour))
         middle = (x0[narrow] + x1[narrow]) / 2
         half = GRAB_PX / 2
+        flag = _flag(GRAB_PX, half)  # a lone narrow clip's, moved to each (no new points)
         for a, b in runs(middle - half, middle + half):
-            inset = min(half, (b - a) / 2)
-            painter.drawPolygon(
-                QPolygonF(
-                    [
-                        QPointF(a, top),
-                        QPointF(b, top),
-                        QPointF(b - inset, top + GRAB_PX),
-                        QPointF(a + inset, top + GRAB_PX),
-                    ]
-                )
-            )
+            polygon = flag if b - a == GRAB_PX else _flag(b - a, min(half, (b - a) / 2))
+            painter.drawPolygon(polygon.translated(a, top))
         selected = [clips.items[i] for i in found.tolist() if clips.items[i].selected]
         if selected:
             painter.setBrush(Qt.BrushStyle.NoBrush)
@@ -228,6 +220,13 @@ class ClipLayer(QGraphicsItem):
             if hits
             else None
         )
+
+
+def _flag(width: float, inset: float) -> QPolygonF:
+    """The grab flag over narrow clips, `width` wide at the top, at the origin."""
+    return QPolygonF(
+        [QPointF(0, 0), QPointF(width, 0), QPointF(width - inset, GRAB_PX), QPointF(inset, GRAB_PX)]
+    )
 
 
 def fill_runs(
