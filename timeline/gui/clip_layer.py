@@ -11,7 +11,7 @@ costs the same as a few clips; a lane showing fewer draws each clip's waveform, 
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from functools import cache
+from functools import cache, cached_property
 from typing import cast
 
 import numpy as np
@@ -39,6 +39,11 @@ class LaneClips:
         self.longest = float((self.ends - self.starts).max()) if ordered else 0.0
         self.muted = bool(ordered) and ordered[0].muted
         self.colour = ordered[0].colour if ordered else QColor("#888888")
+
+    @cached_property
+    def selected(self) -> np.ndarray:
+        """Which clips are selected (a lane whose selection changes gets new LaneClips)."""
+        return np.array([item.selected for item in self.items], dtype=bool)
 
     def moved(self, starts: Sequence[float], items: Sequence[ClipItem]) -> LaneClips | None:
         """These clips' items (updated in place; `starts`: where they started) put where they
@@ -192,9 +197,10 @@ class ClipLayer(QGraphicsItem):
         half = GRAB_PX / 2
         flag = _flag(GRAB_PX, half)  # a lone narrow clip's, moved to each (no new points)
         for a, b in runs(middle - half, middle + half):
-            polygon = flag if b - a == GRAB_PX else _flag(b - a, min(half, (b - a) / 2))
+            lone = abs(b - a - GRAB_PX) < 1e-9  # (m + 5) - (m - 5) is 10 give or take 1e-15
+            polygon = flag if lone else _flag(b - a, min(half, (b - a) / 2))
             painter.drawPolygon(polygon.translated(a, top))
-        selected = [clips.items[i] for i in found.tolist() if clips.items[i].selected]
+        selected = [clips.items[i] for i in found[clips.selected[found]].tolist()]
         if selected:
             painter.setBrush(Qt.BrushStyle.NoBrush)
             painter.setPen(QPen(QColor("#1a1a1a"), 2))
@@ -232,10 +238,10 @@ def _flag(width: float, inset: float) -> QPolygonF:
 def fill_runs(
     painter: QPainter, spans: list[tuple[float, float]], top: float, height: float, colour: QColor
 ) -> None:
-    """Fill disjoint spans [a, b) of one row of the scene (rectangles from `top`, `height` high)
-    with a colour as one image, with the pixels QPainter fills for an unclipped rectangle without
-    antialiasing under a translation: the columns from round(a) up to round(b) (halves rounded
-    up; Qt's rasterizer, which it uses for clipped rectangles, rounds halves down)."""
+    """Fill disjoint spans [a, b), each a pixel wide or more, of one row of the scene (from `top`,
+    `height` high) with a colour as one image, with the pixels QPainter fills for an unclipped
+    rectangle without antialiasing under a translation: the columns from round(a) up to round(b)
+    (halves rounded up; Qt's rasterizer, which it uses for clipped rectangles, rounds them down)."""
     if not spans:
         return
     edges = np.floor(np.array(spans, dtype=np.float64) + 0.5).astype(np.int64)
@@ -243,8 +249,8 @@ def fill_runs(
     if last <= first:
         return
     step = np.zeros(last - first + 1, dtype=np.int64)
-    np.add.at(step, edges[:, 0] - first, 1)
-    np.add.at(step, edges[:, 1] - first, -1)
+    step[edges[:, 0] - first] += 1  # disjoint spans: no two start (or end) on one column
+    step[edges[:, 1] - first] -= 1
     row = np.where(np.cumsum(step)[:-1] > 0, _premultiplied(colour.rgba(), painter.opacity()), 0)
     row0 = np.floor(top + 0.5)
     rows = np.floor(top + height + 0.5) - row0
