@@ -116,3 +116,36 @@ def test_hovering_the_shading_names_the_finding_and_elsewhere_the_clip(stiff_win
     sine = win.view.clip_scene_rect(win.ids["c1"]).center()  # a drive lane: no finding there
     assert win.findings.layer.tip(sine) == ""
     assert scene.clip_at(sine).toolTip().startswith("sine")
+
+
+def test_the_shading_kept_between_paints_is_painted_again_when_the_findings_change(
+    stiff_window, qtbot
+) -> None:
+    """The shading is painted once into strips kept between paints: after an edit moves the
+    finding, the lanes show what a new window on the same project paints."""
+    from PySide6.QtGui import QImage
+
+    from timeline.gui.main_window import MainWindow
+
+    win = stiff_window
+    viewport = win.view.viewport()
+    before = viewport.grab().toImage()  # the strips of the spring at 0.2-0.7 s are kept
+    p = edits.move_clip(win.doc.project, win.ids["stiff"], 1.2)
+    win.doc.replace("move the spring", p)
+    qtbot.waitUntil(lambda: win.findings.settled, timeout=20_000)
+    assert win.findings.shades[0].rect().left() == pytest.approx(200.0 * 1.2)
+    fresh = MainWindow(win.doc.project)
+    qtbot.addWidget(fresh)
+    fresh.resize(win.size())
+    fresh.show()
+    qtbot.waitExposed(fresh)
+    fresh.view.lane_geometry.px_per_unit = 200.0
+    fresh.view.refresh()
+    qtbot.waitUntil(lambda: fresh.findings.settled, timeout=20_000)
+    moved = viewport.grab().toImage().convertToFormat(QImage.Format.Format_RGB32)
+    new = fresh.view.viewport().grab().toImage().convertToFormat(QImage.Format.Format_RGB32)
+    assert moved.size() == new.size()
+    assert moved != before.convertToFormat(QImage.Format.Format_RGB32)
+    assert moved.constBits().tobytes() == new.constBits().tobytes()
+    fresh.player.close()
+    fresh.autosaver.discard()

@@ -11,11 +11,12 @@ costs the same as a few clips; a lane showing fewer draws each clip's waveform, 
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from functools import cache, cached_property
 from typing import cast
 
 import numpy as np
 from PySide6.QtCore import QPointF, QRect, QRectF, Qt
-from PySide6.QtGui import QBrush, QColor, QPainter, QPen, QPolygonF
+from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPen, QPolygonF
 from PySide6.QtWidgets import QGraphicsItem
 
 from .clip_item import GRAB_PX, ClipItem
@@ -38,6 +39,11 @@ class LaneClips:
         self.longest = float((self.ends - self.starts).max()) if ordered else 0.0
         self.muted = bool(ordered) and ordered[0].muted
         self.colour = ordered[0].colour if ordered else QColor("#888888")
+
+    @cached_property
+    def selected(self) -> np.ndarray:
+        """Which clips are selected (a lane whose selection changes gets new LaneClips)."""
+        return np.array([item.selected for item in self.items], dtype=bool)
 
     def moved(self, starts: Sequence[float], items: Sequence[ClipItem]) -> LaneClips | None:
         """These clips' items (updated in place; `starts`: where they started) put where they
@@ -80,8 +86,8 @@ def runs(left: np.ndarray, right: np.ndarray) -> list[tuple[float, float]]:
     order = np.argsort(left, kind="stable")
     a, b = left[order], np.maximum.accumulate(right[order])
     breaks = np.flatnonzero(a[1:] > b[:-1]) + 1
-    starts = np.r_[0, breaks]
-    stops = np.r_[breaks - 1, a.size - 1]
+    starts = np.concatenate(([0], breaks))  # not np.r_: 10x the cost at this size
+    stops = np.concatenate((breaks - 1, [a.size - 1]))
     return list(zip(a[starts].tolist(), b[stops].tolist(), strict=True))
 
 
@@ -181,28 +187,20 @@ class ClipLayer(QGraphicsItem):
         painter.setPen(QPen(colour.darker(130), 1))
         wide = zip(x0[~narrow].tolist(), x1[~narrow].tolist(), strict=True)
         painter.drawRects([QRectF(a, top, b - a, h) for a, b in wide])
-        painter.setPen(Qt.PenStyle.NoPen)  # runs of narrow clips: filled, not outlined (the
-        # outlines of hundreds of runs cost more than their fill)
-        fill.setAlpha(130)
-        painter.setBrush(QBrush(fill))
-        painter.drawRects([QRectF(a, top, b - a, h) for a, b in runs(x0[narrow], x1[narrow])])
+        fill.setAlpha(130)  # runs of narrow clips: filled, not outlined (the outlines of
+        # hundreds of runs cost more than their fill), as one picture (one rectangle each cost
+        # 6 us, 5.6 ms of a repaint at fit on 20,000 clips)
+        fill_runs(painter, runs(x0[narrow], x1[narrow]), top, h, fill)
         painter.setPen(QPen(colour.darker(130), 1))
         painter.setBrush(QBrush(colour))
         middle = (x0[narrow] + x1[narrow]) / 2
         half = GRAB_PX / 2
+        flag = _flag(GRAB_PX, half)  # a lone narrow clip's, moved to each (no new points)
         for a, b in runs(middle - half, middle + half):
-            inset = min(half, (b - a) / 2)
-            painter.drawPolygon(
-                QPolygonF(
-                    [
-                        QPointF(a, top),
-                        QPointF(b, top),
-                        QPointF(b - inset, top + GRAB_PX),
-                        QPointF(a + inset, top + GRAB_PX),
-                    ]
-                )
-            )
-        selected = [clips.items[i] for i in found.tolist() if clips.items[i].selected]
+            lone = abs(b - a - GRAB_PX) < 1e-9  # (m + 5) - (m - 5) is 10 give or take 1e-15
+            polygon = flag if lone else _flag(b - a, min(half, (b - a) / 2))
+            painter.drawPolygon(polygon.translated(a, top))
+        selected = [clips.items[i] for i in found[clips.selected[found]].tolist()]
         if selected:
             painter.setBrush(Qt.BrushStyle.NoBrush)
             painter.setPen(QPen(QColor("#1a1a1a"), 2))
@@ -228,6 +226,59 @@ class ClipLayer(QGraphicsItem):
             if hits
             else None
         )
+
+
+def _flag(width: float, inset: float) -> QPolygonF:
+    """The grab flag over narrow clips, `width` wide at the top, at the origin."""
+    return QPolygonF(
+        [QPointF(0, 0), QPointF(width, 0), QPointF(width - inset, GRAB_PX), QPointF(inset, GRAB_PX)]
+    )
+
+
+def fill_runs(
+    painter: QPainter, spans: list[tuple[float, float]], top: float, height: float, colour: QColor
+) -> None:
+    """Fill disjoint spans [a, b), each a pixel wide or more, of one row of the scene (from `top`,
+    `height` high) with a colour as one image, with the pixels QPainter fills for an unclipped
+    rectangle without antialiasing under a translation: the columns from round(a) up to round(b)
+    (halves rounded up; Qt's rasterizer, which it uses for clipped rectangles, rounds them down)."""
+    if not spans:
+        return
+    edges = np.floor(np.array(spans, dtype=np.float64) + 0.5).astype(np.int64)
+    first, last = int(edges[0, 0]), int(edges[-1, 1])
+    if last <= first:
+        return
+    step = np.zeros(last - first + 1, dtype=np.int64)
+    step[edges[:, 0] - first] += 1  # disjoint spans: no two start (or end) on one column
+    step[edges[:, 1] - first] -= 1
+    row = np.where(np.cumsum(step)[:-1] > 0, _premultiplied(colour.rgba(), painter.opacity()), 0)
+    row0 = np.floor(top + 0.5)
+    rows = np.floor(top + height + 0.5) - row0
+    if rows <= 0:
+        return
+    pixels = np.ascontiguousarray(row, dtype=np.uint32)
+    image = QImage(
+        pixels.data, pixels.size, 1, 4 * pixels.size, QImage.Format.Format_ARGB32_Premultiplied
+    )
+    opacity = painter.opacity()
+    painter.setOpacity(1.0)  # already in the pixels, as a fill with this opacity blends them
+    # the row stretched down (each pixel repeated, not interpolated)
+    target = QRectF(first, float(row0), float(pixels.size), float(rows))
+    painter.drawImage(target, image, QRectF(0, 0, pixels.size, 1))
+    painter.setOpacity(opacity)
+
+
+@cache
+def _premultiplied(rgba: int, opacity: float) -> int:
+    """The premultiplied pixel Qt blends for a fill of this colour (QColor.rgba) at this
+    opacity."""
+    pixel = QImage(1, 1, QImage.Format.Format_ARGB32_Premultiplied)
+    pixel.fill(0)
+    painter = QPainter(pixel)
+    painter.setOpacity(opacity)
+    painter.fillRect(QRectF(0, 0, 1, 1), QColor.fromRgba(rgba))
+    painter.end()
+    return int(np.frombuffer(pixel.constBits(), dtype=np.uint32, count=1)[0])
 
 
 def _painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:

@@ -9,6 +9,7 @@ worker also computes what the device will output (rendered_overlay) and the lane
 
 from __future__ import annotations
 
+import math
 import threading
 from collections import Counter
 from collections.abc import Callable
@@ -18,7 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from PySide6.QtCore import QObject, QPointF, QRectF, Qt, QTimer, Signal
-from PySide6.QtGui import QBrush, QColor, QPainter, QPen
+from PySide6.QtGui import QBrush, QColor, QImage, QPainter, QPen
 from PySide6.QtWidgets import QGraphicsItem
 
 from timeline.errors import HapticTimelineError
@@ -108,6 +109,9 @@ class ShadeLayer(QGraphicsItem):
         super().__init__()
         self.g = geometry
         self.groups: list[_Group] = []
+        self._version = 0  # of the groups, for the strips kept
+        self._strips: dict[tuple[int, int, int], _Strip] = {}  # (group, left, right) -> strip
+        self._strips_of: tuple[object, ...] = ()  # the groups' version, zoom and lane height
         self._rect = QRectF()
         self.setZValue(SHADE_Z)
         self.setAcceptedMouseButtons(Qt.MouseButton.NoButton)
@@ -124,6 +128,7 @@ class ShadeLayer(QGraphicsItem):
             )
             grouped.setdefault((finding.area, lanes), []).append(finding)
         self.groups = [_Group(area, lanes, f) for (area, lanes), f in grouped.items()]
+        self._version += 1
         self.update()
 
     def shades(self) -> list[Shade]:
@@ -159,40 +164,103 @@ class ShadeLayer(QGraphicsItem):
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
         exposed = option.exposedRect
         g = self.g
-        u0, u1 = g.u(exposed.left() - 2), g.u(exposed.right() + 2)
+        left = math.floor(exposed.left()) - 2
+        right = max(math.ceil(exposed.right()) + 2, left + 1)
         lanes_shown = visible_lanes(g, 1 << 30, exposed)
         font = painter.font()
         font.setPointSizeF(7.5)
         painter.setFont(font)
         painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # rectangles on pixels
-        for grp in self.groups:
+        for index, grp in enumerate(self.groups):
             lanes = [lane for lane in grp.lanes if lane in lanes_shown]
             if not lanes:
                 continue
-            seen = np.flatnonzero((grp.starts <= u1) & (grp.stops >= u0))
-            x0 = grp.starts[seen] * g.px_per_unit
-            x1 = np.maximum(grp.stops[seen] * g.px_per_unit, x0 + 2.0)
-            wide = (x1 - x0) >= LABEL_PX
-            kinds = [grp.findings[i].kind for i in seen[wide].tolist()]
-            labels = list(zip(x0[wide].tolist(), x1[wide].tolist(), kinds, strict=True))
-            spans = runs(x0[~wide], x1[~wide]) + [(a, b) for a, b, _ in labels]
-            edge = EDGES[grp.area]
+            strips = [
+                self._strip(index, grp, start, min(right, start + STRIP_PX))
+                for start in range(left, right, STRIP_PX)
+            ]
+            labels = dict.fromkeys(label for strip in strips for label in strip.labels)
+            painter.setPen(EDGES[grp.area])
             for lane in lanes:
-                top, h = g.lane_top(lane) + 1, g.lane_height - 2
-                rects = [QRectF(a, top, b - a, h) for a, b in spans]
-                painter.setPen(QPen(edge, 1))  # 1 px: a wider pen is stroked, 10x slower
-                painter.setBrush(QBrush(COLOURS[grp.area]))
-                painter.drawRects(rects)
-                painter.setPen(Qt.PenStyle.NoPen)
-                painter.setBrush(QBrush(edge, Qt.BrushStyle.BDiagPattern))
-                painter.drawRects(rects)
-                painter.setPen(edge)
+                top = g.lane_top(lane)
+                for strip in strips:
+                    painter.drawImage(QPointF(strip.left, top), strip.image(top))
                 for a, b, kind in labels:
                     painter.drawText(
-                        QRectF(a, top, b - a, h).adjusted(3, 0, -2, -2),
+                        QRectF(a, top + 1, b - a, g.lane_height - 2).adjusted(3, 0, -2, -2),
                         Qt.AlignmentFlag.AlignBottom,
                         kind,
                     )
+
+    def _strip(self, index: int, grp: _Group, left: int, right: int) -> _Strip:
+        """The group's shading on scene columns left..right of a lane (kept while the findings,
+        the zoom and the lane height stay)."""
+        g = self.g
+        state = (self._version, g.px_per_unit, g.lane_height)
+        if state != self._strips_of or len(self._strips) > MAX_STRIPS:
+            self._strips_of = state
+            self._strips.clear()
+        kept = self._strips.get((index, left, right))
+        if kept is not None:
+            return kept
+        u0, u1 = g.u(left), g.u(right)
+        seen = np.flatnonzero((grp.starts <= u1) & (grp.stops >= u0))
+        x0 = grp.starts[seen] * g.px_per_unit
+        x1 = np.maximum(grp.stops[seen] * g.px_per_unit, x0 + 2.0)
+        wide = (x1 - x0) >= LABEL_PX
+        kinds = [grp.findings[i].kind for i in seen[wide].tolist()]
+        labels = list(zip(x0[wide].tolist(), x1[wide].tolist(), kinds, strict=True))
+        spans = runs(x0[~wide], x1[~wide]) + [(a, b) for a, b, _ in labels]
+        strip = _Strip(left, right, grp.area, spans, labels, g)
+        self._strips[(index, left, right)] = strip
+        return strip
+
+
+STRIP_PX = 2048  # the shading is painted in strips at most this wide
+MAX_STRIPS = 64  # strips kept (scrolling at one zoom paints new ones)
+
+
+class _Strip:
+    """One group's shading on some columns of a lane, painted once into an image and drawn on
+    each of its lanes: the spans are hatched and outlined as on the lane itself, in one image
+    per phase of the 8-pixel hatch (lane tops 76 pixels apart alternate it)."""
+
+    def __init__(
+        self,
+        left: int,
+        right: int,
+        area: str,
+        spans: list[tuple[float, float]],
+        labels: list[tuple[float, float, str]],
+        geometry: Geometry,
+    ) -> None:
+        self.left, self.right, self.area = left, right, area
+        self.spans, self.labels, self.g = spans, labels, geometry
+        self._images: dict[float, QImage] = {}
+
+    def image(self, top: float) -> QImage:
+        """The picture for a lane whose top is at this scene y."""
+        phase = top % 8
+        if phase not in self._images:
+            self._images[phase] = self._paint(top)
+        return self._images[phase]
+
+    def _paint(self, top: float) -> QImage:
+        g, left, right = self.g, self.left, self.right
+        image = QImage(right - left, g.lane_height, QImage.Format.Format_ARGB32_Premultiplied)
+        image.fill(0)
+        painter = QPainter(image)
+        painter.translate(-left, -top)  # scene coordinates: the hatch keeps its phase
+        rects = [QRectF(a, top + 1, b - a, g.lane_height - 2) for a, b in self.spans]
+        edge = EDGES[self.area]
+        painter.setPen(QPen(edge, 1))  # 1 px: a wider pen is stroked, 10x slower
+        painter.setBrush(QBrush(COLOURS[self.area]))
+        painter.drawRects(rects)
+        painter.setPen(Qt.PenStyle.NoPen)
+        painter.setBrush(QBrush(edge, Qt.BrushStyle.BDiagPattern))
+        painter.drawRects(rects)
+        painter.end()
+        return image
 
 
 def summary(report: Report) -> str:

@@ -22,7 +22,7 @@ from timeline.plugins.track_kinds import track_kind
 from timeline.tiles import Tile
 
 from .clip_item import ClipItem
-from .clip_layer import ClipLayer, LaneClips
+from .clip_layer import ClipLayer, LaneClips, fill_runs
 from .geometry import Geometry, display_factor, nice_step
 from .lane_scale import visible_lanes
 
@@ -356,8 +356,9 @@ class TimelineScene(QGraphicsScene):
             band = QRectF(g.x(loop.start), 0, g.x(loop.stop) - g.x(loop.start), bottom)
             painter.fillRect(band.intersected(rect), QColor(56, 160, 90, 30))
         top, height = max(0.0, rect.top()), min(bottom, rect.bottom()) - max(0.0, rect.top())
-        for i in range(first, last + 1):
-            painter.fillRect(QRectF(round(g.x(i * step)), top, 1, height), GRID_COLOUR)
+        # one picture for all the grid lines: a blended pixel-wide column cost 0.12-0.16 ms each
+        columns = sorted({round(g.x(i * step)) for i in range(first, last + 1)})
+        fill_runs(painter, [(float(x), x + 1.0) for x in columns], top, height, GRID_COLOUR)
 
     def grid_step(self) -> float:
         """The grid spacing in axis units at the current zoom (what snapping lands on)."""
