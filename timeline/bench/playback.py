@@ -63,9 +63,8 @@ def run(quick: bool, out: Path) -> list[Table]:
         "each device in a fresh editor process, offscreen Qt; hog: `while True: pass` in "
         "another process; child alone: the play process with no editor (full run only)",
         "priority: what the OS granted the play process's playing thread (prefer_real_time: "
-        "real-time where permitted, else nice -10, and a short slice where the kernel takes "
-        "one; HAPTIC_TIMELINE_PLAY_PRIORITY=normal asks only what any user may, the short "
-        "slice; =off asks nothing)",
+        "real-time where permitted, else nice -10, else normal; "
+        "HAPTIC_TIMELINE_PLAY_PRIORITY=normal turns it off)",
     ]
     return [table]
 

@@ -109,7 +109,7 @@ def granted() -> str:
     thread = threading.Thread(target=lambda: got.append(prefer_real_time()))
     thread.start()
     thread.join()
-    return got[0] or "ordinary"
+    return got[0] or "normal"
 
 
 def _play(app, win, gesture: str, seconds: float) -> dict:
