@@ -107,11 +107,13 @@ class KnobPhysics:
 
     # --- public stepping -----------------------------------------------------------------
 
-    def run_block(self, block: CoefficientBlock) -> Telemetry:
+    def run_block(self, block: CoefficientBlock, judged: bool = True) -> Telemetry:
         """Render one block of coefficients (one value per servo period).
 
         NaN or infinite coefficients are played as zero (no force), never silently: they are
-        flagged ("non-finite", at each such sample) and named in a warning.
+        flagged ("non-finite", at each such sample) and named in a warning. `judged`: flag the
+        samples beyond the loop's stability limits (about 1 ms a block at 20,000 clips, most of
+        it the whole loop's eigenvalues).
         """
         rows = (
             (block.d, block.k, block.b) if block.m is None else (block.d, block.k, block.b, block.m)
@@ -128,7 +130,9 @@ class KnobPhysics:
         layers = dict(zip("dkbm", coeffs[:, :n], strict=False))
         p = self.params
         k, b, m = layers["k"], layers["b"], layers.get("m")
-        flags = stability_flags(tel.time, k, b, m, p.dynamics, p.period, self._loads)
+        flags = (
+            stability_flags(tel.time, k, b, m, p.dynamics, p.period, self._loads) if judged else []
+        )
         if refused is not None:
             flags.append(refused)
             tel = replace(tel, warnings=(*tel.warnings, refused.message))

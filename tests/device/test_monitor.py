@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from device.sim import SimKnob
+from device.sim import KnobParams, SimKnob, passive_stiffness
 from device.usb import UsbKnob
 from timeline.plugins.device_protocol import CoefficientBlock, Hand
 
@@ -26,3 +26,17 @@ def test_monitor_pieces_add_up_to_the_telemetry(make):
     np.testing.assert_array_equal(np.concatenate([p.angle for p in pieces]), tel.angle)
     np.testing.assert_array_equal(np.concatenate([p.torque for p in pieces]), tel.torque)
     assert np.abs(tel.torque).max() > 0.01
+
+
+def test_a_monitored_sim_play_plays_the_same_torque_without_judging_it():
+    p = KnobParams()
+    limit = passive_stiffness(p.viscous, 0.0, p.period, p.delay)
+    n = 100
+    d = np.zeros(n)
+    d[:5] = 0.01
+    spring = [CoefficientBlock(d, np.full(n, 1.5 * limit), np.zeros(n))]  # past passivity
+    judged = SimKnob().play(spring, Hand("hold"))
+    watched = SimKnob().play(spring, Hand("hold"), monitor=lambda part: None)
+    assert "passivity" in {f.kind for f in judged.flags}
+    assert watched.flags == ()  # the editor, which monitors, judges the design itself
+    np.testing.assert_array_equal(watched.torque, judged.torque)

@@ -4,7 +4,7 @@ Each device runs in a fresh process (timeline.bench.playback_session): the edito
 opens the large benchmark project and plays on the simulated knob or on the emulated USB knob
 running on the wall clock (HAPTIC_TIMELINE_USB_EMULATE=realtime; streamed from a process of its
 own), while the GUI idles, scrolls, zooms and drags a clip; then again with a process spinning
-on one core beside it. A block later than the device's lead (the sim 30 ms, the USB knob 100 ms)
+on one core beside it. A block later than the device's lead (the sim 30 ms, the USB knob 120 ms)
 is one a real knob would have had to play from an empty queue.
 """
 
@@ -46,7 +46,7 @@ def run(quick: bool, out: Path) -> list[Table]:
                     row.get("gaps", 0),
                     f"{1e3 * row.get('worst', 0.0):.1f}",
                     _ms(row.get("first_block")),
-                    "yes" if row.get("named") else ("—" if not row.get("late") else "NO"),
+                    _named(row, alone),
                     _ending(row.get("ended", "")),
                     row.get("priority", "—"),
                     f"{row['load']:.1f}",
@@ -57,7 +57,8 @@ def run(quick: bool, out: Path) -> list[Table]:
         "late: blocks handed over more than the device's lead behind their slot (a real knob's "
         "queue would have run dry); worst: the largest delay behind the slot; first block: "
         "from Play to the first block handed over (the first play follows the editor's warm-up)",
-        "named: the message bar named the late blocks; ended: how the play ended (the USB knob "
+        "named: the message bar named the late blocks (— where none were late, or with no "
+        "editor); ended: how the play ended (the USB knob "
         "stops on an underrun); load: the 1-minute load average when the play ended",
         "each device in a fresh editor process, offscreen Qt; hog: `while True: pass` in "
         "another process; child alone: the play process with no editor (full run only)",
@@ -81,6 +82,13 @@ def _session(device: str, clips: int, seconds: float, hog: bool, alone: bool) ->
         tail = done.stderr.strip().splitlines()[-1:]
         return [{"gesture": f"failed (exit {done.returncode}): {tail}", "load": os.getloadavg()[0]}]
     return rows
+
+
+def _named(row: dict, alone: bool) -> str:
+    """Whether the message bar named the row's late blocks ("—": none late, or no editor)."""
+    if alone or not row.get("late"):
+        return "—"
+    return "yes" if row.get("named") else "NO"
 
 
 def _ms(seconds: float | None) -> str:

@@ -67,7 +67,7 @@ IDLE_SECONDS = 0.5  # the first warm-up waits for this long without input after 
 _INPUT = frozenset(
     (QEvent.Type.MouseButtonPress, QEvent.Type.MouseMove, QEvent.Type.KeyPress, QEvent.Type.Wheel)
 )
-STOP_SECONDS = 2.0  # a stop waits this long for the device to finish its block
+STOP_SECONDS = 2.0  # a play stopped in the play process is given up on if not ended by then
 HANDOVER_WAIT = 0.005  # a Play waits this long (GUI thread) for the warm-up's hand-over
 
 
@@ -164,6 +164,8 @@ class Player(QObject):
         self._switch = 0.0  # the interpreter's switch interval before playing (0: not playing)
         self._opened: Device | None = None  # the device this player opened itself
         self._remote: PlayProcess | None = None  # the play process, while it plays for us
+        self._ending: PlayProcess | None = None  # it ends a play we stopped: its "done" is due
+        self._stopped_at = 0.0  # perf_counter of that stop
         _Shared.end_with(QCoreApplication.instance())
 
     @staticmethod
@@ -327,6 +329,7 @@ class Player(QObject):
         from .live_stream import LiveStream, LiveTables
 
         self.stop()
+        self._ending = None  # a stopped play's end is superseded (its "done" is not this one's)
         asked = time.perf_counter()
         if self._warm_source is not None:  # Play before the editor was idle: warm up now
             self.warm_up(project, start)
@@ -415,6 +418,20 @@ class Player(QObject):
                     stream.lateness.heard = args[1]
                 self._outcome, self._remote = args[0], None
 
+    def _heard_end(self, messages: list[tuple]) -> None:
+        """Take in a stopped play's end: its final late counts and outcome (what it played
+        after the Stop is not shown); given up on after STOP_SECONDS."""
+        from .play_process import RemoteStream  # loaded: the play process is speaking
+
+        for kind, *args in messages:
+            if kind == "done":
+                if isinstance(self.stream, RemoteStream):
+                    self.stream.lateness.heard = args[1]
+                self._outcome, self._ending = args[0], None
+                return
+        if time.perf_counter() - self._stopped_at > STOP_SECONDS:
+            self._outcome, self._ending = "", None  # no answer: the next play starts it over
+
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:
             device.play(program, hand, monitor=self._part)
@@ -448,6 +465,8 @@ class Player(QObject):
         """GUI thread: pass on what the playing thread (or process) left behind."""
         if self._remote is not None:
             self._heard(self._remote.take())
+        elif self._ending is not None:
+            self._heard_end(self._ending.take())
         parts = [self._parts.popleft() for _ in range(len(self._parts))]
         if parts:
             angle = np.concatenate([p.angle for p in parts])
@@ -506,8 +525,11 @@ class Player(QObject):
             self.tables.set_project(project)
 
     def stop(self) -> None:
-        """Stop playing and wait for the device to finish its block; where it got to is not
-        reported after this (the playhead stays where a stop or a scrub left it)."""
+        """Stop playing; where it got to is not reported after this (the playhead stays where a
+        stop or a scrub left it). A play in the play process is asked to stop and not waited
+        for (a USB play's end takes ~0.15 s: its queue plays out, then the knob ramps to zero);
+        `finished` follows its end, through the poll timer. A thread playing here is waited
+        for (its block)."""
         self._halt.set()
         self.sound.stop()
         if self.stream is not None:  # (the live stream's module loads with the first stream)
@@ -517,9 +539,7 @@ class Player(QObject):
                 self.stream.stop_stream()
         if self._remote is not None:  # still playing in the play process
             self._remote.stop()
-            self._heard(self._remote.wait_done(STOP_SECONDS))
-            if self._remote is not None:  # no answer: the next play starts it over
-                self._outcome, self._remote = "", None
+            self._ending, self._stopped_at, self._remote = self._remote, time.perf_counter(), None
         if self._thread is not None:
             self._thread.join(timeout=2.0)
             self._thread = None
@@ -528,6 +548,7 @@ class Player(QObject):
     def close(self) -> None:
         """Stop, release the device and report nothing more (the window is closing)."""
         self.stop()
+        self._ending = None
         if _Shared.owner is self:
             _Shared.owner = None
         self._poll.stop()

@@ -58,7 +58,10 @@ class Device(abc.ABC):
     ) -> Telemetry:
         """Play coefficient blocks (or a position program) and return what happened.
 
-        `monitor`, if given, receives each piece of telemetry as the device reports it.
+        `monitor`, if given, receives each piece of telemetry as the device reports it; a
+        monitored play is watched live by a host that judges the design itself (the editor's
+        findings), so a device may leave the judgement of the whole play (`Telemetry.flags`
+        of stability) out of it, as the sim and the USB knob's stream process do.
         """
 
     @classmethod
