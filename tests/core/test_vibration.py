@@ -376,3 +376,12 @@ def test_any_run_of_point_edits_leaves_a_valid_design_or_says_why(steps):
             assert all(0.0 <= q[1] <= 1.0 for q in points)
     x = _drive(p)
     assert np.all(np.isfinite(x)) and np.max(np.abs(x)) <= 2.6 + 1e-9  # envelope 1, pulses 1, 0.6
+
+
+def test_a_frequency_point_a_denormal_time_after_another_renders_finite_values():
+    p = _project()
+    tile = p.tracks[0].clips[0].tile_id
+    p = tile_shape.move_point(p, tile, 1, 2.225073858507203e-309, 0.0, "frequency")
+    x = _drive(p)
+    assert np.all(np.isfinite(x)) and abs(x[0]) <= 1e-12  # sin(0) at the knot, not 0 * inf
+    assert np.max(np.abs(x)) > 0.1  # the carrier still plays

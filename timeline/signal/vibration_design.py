@@ -278,7 +278,11 @@ class VibrationDesign:
         d = u - t[k]
         slope = np.zeros(len(t))
         inner = width > 0
-        slope[:-1][inner] = (hz[1:][inner] - hz[:-1][inner]) / width[inner]
+        with np.errstate(over="ignore"):
+            slope[:-1][inner] = (hz[1:][inner] - hz[:-1][inner]) / width[inner]
+        # A segment too narrow for its slope to be a float (a denormal width) adds under 1e-300
+        # cycles through the slope: it is held flat, so the knot's own sample is not 0 * inf.
+        slope[~np.isfinite(slope)] = 0.0
         slope[-1] = 0.0
         out = at_knots[k] + hz[k] * d + 0.5 * slope[k] * d * d
         return np.where(before, hz[0] * u, out)
