@@ -414,23 +414,27 @@ class Player(QObject):
                 stream.heard(*args)
                 self._position = args[0]
             elif kind == "done":
-                if isinstance(stream, RemoteStream):
-                    stream.lateness.heard = args[1]
-                self._outcome, self._remote = args[0], None
+                self._ended(*args)
+                self._remote = None
 
     def _heard_end(self, messages: list[tuple]) -> None:
         """Take in a stopped play's end: its final late counts and outcome (what it played
         after the Stop is not shown); given up on after STOP_SECONDS."""
-        from .play_process import RemoteStream  # loaded: the play process is speaking
-
         for kind, *args in messages:
             if kind == "done":
-                if isinstance(self.stream, RemoteStream):
-                    self.stream.lateness.heard = args[1]
-                self._outcome, self._ending = args[0], None
+                self._ended(*args)
+                self._ending = None
                 return
         if time.perf_counter() - self._stopped_at > STOP_SECONDS:
             self._outcome, self._ending = "", None  # no answer: the next play starts it over
+
+    def _ended(self, outcome: str, late: Lateness) -> None:
+        """The play process's "done": how the play ended and its final late counts."""
+        from .play_process import RemoteStream  # loaded: the play process is speaking
+
+        if isinstance(self.stream, RemoteStream):
+            self.stream.lateness.heard = late
+        self._outcome = outcome
 
     def _run(self, device: Device, program, hand: Hand) -> None:
         try:

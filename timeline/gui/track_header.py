@@ -8,7 +8,6 @@ from typing import Any
 from PySide6.QtCore import QEvent, QObject, QPoint, Qt, Signal
 from PySide6.QtGui import QColor, QMouseEvent
 from PySide6.QtWidgets import (
-    QApplication,
     QDoubleSpinBox,
     QFrame,
     QHBoxLayout,
@@ -88,7 +87,7 @@ class TrackHeader(QFrame):
         layout.addLayout(bottom)
         for field in (self.name, self.gain):
             field.installEventFilter(self)  # typing in a header shows its track too
-        self.shown: Track | None = None  # the track object shown
+        self._shown: Track | None = None
         self.show_track(track)
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:
@@ -106,9 +105,9 @@ class TrackHeader(QFrame):
 
     def show_track(self, track: Track) -> None:
         """Show a track's current settings without emitting edits."""
-        if track is self.shown and not self.name.hasFocus():
+        if track is self._shown and not self.name.hasFocus():
             return  # tracks are immutable: the same object shows the same settings
-        self.shown = track
+        self._shown = track
         if not self.name.hasFocus():
             self.name.blockSignals(True)
             quiet.set_text(self.name, track.name)
@@ -158,7 +157,7 @@ class TrackHeader(QFrame):
     def _apply(self, label: str, **fields: Any) -> None:
         """Edit the track from this header; whatever the edit's fate, the next refresh shows
         the track as it then is (a refused edit leaves the widgets showing the old state)."""
-        self.shown = None
+        self._shown = None
         self.doc.apply(label, edits.set_track, self.track_id, **fields)
 
 
@@ -247,12 +246,9 @@ class HeaderColumn(QScrollArea):
             for track in tracks[:first]:
                 self._add_header(track)
             self._rest = list(tracks[first:])
-        else:  # a drag changes one track: the others are the same objects, and skipped here
-            focused = QApplication.focusWidget()
+        else:
             for track in tracks:
-                header = self.headers[track.id]
-                if track is not header.shown or header.name is focused:
-                    header.show_track(track)
+                self.headers[track.id].show_track(track)  # skips a track it already shows
 
     def build_rest(self) -> None:
         """Build the headers the column's first build left for later (none if it left none)."""
