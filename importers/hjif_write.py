@@ -20,6 +20,7 @@ decoder plays a keyframe without frequency at 0 Hz.
 from __future__ import annotations
 
 import datetime as _dt
+import os
 from typing import Any
 
 import numpy as np
@@ -74,7 +75,7 @@ def document(project: Project, rate: float | None = None, title: str = "") -> di
         "version": VERSION,
         "profile": "Main",
         "level": 1,
-        "date": _dt.datetime.now(_dt.UTC).date().isoformat(),
+        "date": written_on(),
         "description": f"{title or 'design'} ({CREATED})",
         "timescale": TIMESCALE,
         "avatars": [],
@@ -204,3 +205,11 @@ def _force(project: Project, tracks: list[Track], pid: int, rate: float | None) 
     band = _band("Curve", 0, hi, _effect(0, keyframes))
     full = track_kind(DRIVE).full_scale
     return _perception(pid, f"drive torque, 1 = {full:g} N*m ({CREATED})", "Force", [band])
+
+
+def written_on() -> str:
+    """The file's date (UTC, ISO): SOURCE_DATE_EPOCH's when set (reproducible builds' convention,
+    reproducible-builds.org/specs/source-date-epoch), else today's."""
+    epoch = os.environ.get("SOURCE_DATE_EPOCH", "").strip()
+    moment = _dt.datetime.fromtimestamp(int(epoch), _dt.UTC) if epoch.isdigit() else None
+    return (moment or _dt.datetime.now(_dt.UTC)).date().isoformat()

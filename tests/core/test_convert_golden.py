@@ -1,7 +1,8 @@
 """`convert` keeps the bytes it wrote before breakpoints were held as arrays (issue 19): a short
 synthetic sound converted to .haptic, .ahap, .hjif and .htl, each file's SHA-256 against
 tests/golden/convert_bits.json (written by tests/golden/make/convert_bits.py with the commit
-named there)."""
+named there). The .hjif's date is pinned through SOURCE_DATE_EPOCH (2026-11-26, the day the
+golden was written), else the digest would change each day."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import json
 from pathlib import Path
 
 import numpy as np
+import pytest
 import soundfile
 
 from timeline.files.convert import convert_file
@@ -17,6 +19,7 @@ from timeline.files.convert import convert_file
 GOLDEN = Path(__file__).resolve().parents[1] / "golden" / "convert_bits.json"
 SUFFIXES = (".haptic", ".ahap", ".hjif", ".htl")
 RATE = 8_000
+WRITTEN_ON = "1795651200"  # 2026-11-26 00:00 UTC, SOURCE_DATE_EPOCH for the .hjif's date
 
 
 def write_sound(path: Path) -> None:
@@ -42,5 +45,6 @@ def convert_digests(folder: Path) -> dict[str, str]:
     return digests
 
 
-def test_converted_files_keep_their_bytes(tmp_path: Path) -> None:
+def test_converted_files_keep_their_bytes(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", WRITTEN_ON)
     assert convert_digests(tmp_path) == json.loads(GOLDEN.read_text())["files"]

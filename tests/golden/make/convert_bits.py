@@ -5,6 +5,7 @@ test's sound (tests/core/test_convert_golden.py), from the code of the commit it
 """
 
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -13,7 +14,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(ROOT / "tests" / "core"))
 
-from test_convert_golden import GOLDEN, convert_digests  # noqa: E402
+from test_convert_golden import GOLDEN, WRITTEN_ON, convert_digests  # noqa: E402
+
+os.environ["SOURCE_DATE_EPOCH"] = WRITTEN_ON
 
 with tempfile.TemporaryDirectory() as folder:
     files = convert_digests(Path(folder))
