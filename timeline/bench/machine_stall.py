@@ -58,13 +58,15 @@ def longest_common(overdue: list[list[tuple[float, float]]]) -> float:
 
 class MachineStall:
     """Probes on every CPU from `start` to `stop`, which returns the longest whole-machine stop
-    in seconds (None where a probe was not granted real-time priority: an ordinary probe's
-    wait for a core would be counted as a stop)."""
+    in seconds (None where a probe was not granted real-time priority, as an ordinary probe's
+    wait for a core would be counted as a stop, or where the OS cannot pin one to a CPU)."""
 
     def __init__(self) -> None:
         self._probes: list[subprocess.Popen[str]] = []
 
     def start(self) -> None:
+        if not hasattr(os, "sched_getaffinity"):  # Linux only, as the priority asked for
+            return
         cpus = sorted(os.sched_getaffinity(0))
         self._probes = [
             subprocess.Popen(
