@@ -29,7 +29,7 @@ def run(quick: bool, out: Path) -> list[Table]:
     table = Table(
         f"Playback in the editor while the GUI works: {clips:,} clips, {seconds:g} s per gesture",
         ["device", "hog", "gesture", "lead ms", "blocks", "late", "gaps > 50 ms", "worst ms",
-         "first block ms", "named", "ended", "priority", "load"],
+         "first block ms", "machine stopped ms", "named", "ended", "priority", "load"],
     )  # fmt: skip
     sessions = [(d, h, False) for d, h in runs]
     sessions += [] if quick else [("sim", False, True), ("sim", True, True)]  # no editor
@@ -46,6 +46,7 @@ def run(quick: bool, out: Path) -> list[Table]:
                     row.get("gaps", 0),
                     f"{1e3 * row.get('worst', 0.0):.1f}",
                     _ms(row.get("first_block")),
+                    _ms(row.get("stalled")),
                     _named(row, alone),
                     _ending(row.get("ended", "")),
                     row.get("priority", "—"),
@@ -57,6 +58,10 @@ def run(quick: bool, out: Path) -> list[Table]:
         "late: blocks handed over more than the device's lead behind their slot (a real knob's "
         "queue would have run dry); worst: the largest delay behind the slot; first block: "
         "from Play to the first block handed over (the first play follows the editor's warm-up)",
+        "machine stopped: the longest time no CPU ran anything (a probe pinned to each CPU at "
+        "real-time priority overdue on all at once: on a virtual machine, the host stopping it); "
+        "a block handed over in it is late whatever the program does (— where the probes were "
+        "not granted real-time priority)",
         "named: the message bar named the late blocks (— where none were late, or with no "
         "editor); ended: how the play ended (the USB knob "
         "stops on an underrun); load: the 1-minute load average when the play ended",

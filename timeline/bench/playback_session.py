@@ -20,6 +20,8 @@ import time
 from collections.abc import Callable
 from dataclasses import asdict, replace
 
+from timeline.bench.machine_stall import MachineStall
+
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 GESTURES = ("idle", "scroll", "zoom", "drag")
@@ -89,12 +91,15 @@ def alone(device: str, clips: int, seconds: float) -> dict:
     process = PlayProcess(device)
     try:
         process.warm(project, 0.0)
+        probe = MachineStall()
+        probe.start()
         asked = time.perf_counter()
         process.send("play", project, 0.0, seconds, False, None, Hand("hold"), asked)
         done = process.wait_done(seconds + 30.0)[-1]
+        stalled = probe.stop()
     finally:
         process.close()
-    return {"gesture": "child alone", **asdict(done[2]), "ended": done[1],
+    return {"gesture": "child alone", **asdict(done[2]), "ended": done[1], "stalled": stalled,
             "load": os.getloadavg()[0]}  # fmt: skip
 
 
@@ -124,6 +129,8 @@ def _play(app, win, gesture: str, seconds: float) -> dict:
     win.player.notice.connect(said["notice"].append)
     win.player.finished.connect(said["finished"].append)
     win.transport.scope.clear()
+    probe = MachineStall()
+    probe.start()
     win.player.play(win.doc.project, 0.0, seconds)
     win.transport.show_playing(win.player.playing)
     step, finish = _gesture(win, gesture)
@@ -132,6 +139,7 @@ def _play(app, win, gesture: str, seconds: float) -> dict:
         step()
         _pump(app, STEP_MS / 1000)
     finish()
+    stalled = probe.stop()
     stuck = win.player.playing
     if stuck:
         win.play_stop()
@@ -144,6 +152,7 @@ def _play(app, win, gesture: str, seconds: float) -> dict:
         **(asdict(counts) if counts else {}),
         "ended": "did not end by itself" if stuck else "".join(said["finished"]),
         "named": next((t for t in reversed(said["notice"] + said["finished"]) if "late" in t), ""),
+        "stalled": stalled,
         "load": os.getloadavg()[0],
     }
 
