@@ -45,8 +45,9 @@ class EdgeIndex:
     def nearest(self, project: Project, value: float, exclude: Iterable[str] = ()) -> float:
         """The clip edge (or the origin) nearest to value, ignoring the excluded clips."""
         skip = set(exclude)
-        holding = [t for t in project.tracks if not skip.isdisjoint(t.clips_by_id)]
-        others = tuple(t for t in project.tracks if skip.isdisjoint(t.clips_by_id))
+        free = [t.clips_by_id.keys().isdisjoint(skip) for t in project.tracks]  # walks the fewer
+        holding = [t for t, f in zip(project.tracks, free, strict=True) if not f]
+        others = tuple(t for t, f in zip(project.tracks, free, strict=True) if f)
         if self._others is None or not _same_objects(others, self._others):
             self._others = others
             kept = self._tracks  # only the project's tracks stay
