@@ -12,7 +12,7 @@ that create something return (project, new_id). Overlapping clips on one track a
 from __future__ import annotations
 
 import math
-from bisect import bisect_right
+from bisect import bisect_left, bisect_right
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 from typing import Any
@@ -66,20 +66,19 @@ def _put_clip(
     target = track_id or (source.id if source is not None else None)
     if target is None:
         raise EditError(f"there is no clip {clip.id!r}")
-    changed = {}
+    changed: dict[str, Track] = {}
     if source is not None:
-        changed[source.id] = tuple(c for c in source.clips if c.id != clip.id)
-    clips = changed.get(target)
-    if clips is None:
-        clips = project.track(target).clips
-    at = bisect_right(clips, (clip.start, clip.id), key=_order)
-    changed[target] = clips[:at] + (clip,) + clips[at:]
-    return replace(
-        project,
-        tracks=tuple(
-            replace(t, clips=changed[t.id]) if t.id in changed else t for t in project.tracks
-        ),
-    )
+        old = source.clips_by_id[clip.id]
+        at = bisect_left(source.clips, _order(old), key=_order)
+        if at < len(source.clips) and source.clips[at] is old:  # in order, as edits keep it
+            kept = source.clips[:at] + source.clips[at + 1 :]
+        else:
+            kept = tuple(c for c in source.clips if c.id != clip.id)
+        changed[source.id] = source.with_clips(kept, gone=[old])
+    track = changed.get(target) or project.track(target)
+    at = bisect_right(track.clips, (clip.start, clip.id), key=_order)
+    changed[target] = track.with_clips(track.clips[:at] + (clip,) + track.clips[at:], came=[clip])
+    return replace(project, tracks=tuple(changed.get(t.id, t) for t in project.tracks))
 
 
 def _order(clip: Clip) -> tuple[float, str]:
@@ -154,7 +153,10 @@ def remove_clips(project: Project, clip_ids: Iterable[str]) -> Project:
     for clip_id in ids:
         project.find_clip(clip_id)
     tracks = tuple(
-        replace(t, clips=tuple(c for c in t.clips if c.id not in ids)) for t in project.tracks
+        t.with_clips(tuple(c for c in t.clips if c.id not in ids), [t.clips_by_id[i] for i in gone])
+        if (gone := ids.intersection(t.clips_by_id))
+        else t
+        for t in project.tracks
     )
     return replace(project, tracks=tracks)
 
@@ -195,14 +197,11 @@ def shift_clips(project: Project, clip_ids: Iterable[str], shift: float) -> Proj
     changed = {}
     for track in project.tracks:
         if not ids.isdisjoint(track.clips_by_id):
-            moved = (replace(c, start=c.start + shift) if c.id in ids else c for c in track.clips)
-            changed[track.id] = tuple(sorted(moved, key=_order))
-    return replace(
-        project,
-        tracks=tuple(
-            replace(t, clips=changed[t.id]) if t.id in changed else t for t in project.tracks
-        ),
-    )
+            gone = [c for c in track.clips if c.id in ids]
+            came = {c.id: replace(c, start=c.start + shift) for c in gone}
+            clips = tuple(sorted((came.get(c.id, c) for c in track.clips), key=_order))
+            changed[track.id] = track.with_clips(clips, gone, came.values())
+    return replace(project, tracks=tuple(changed.get(t.id, t) for t in project.tracks))
 
 
 def duplicate_clip(

@@ -302,6 +302,14 @@ class TimelineScene(QGraphicsScene):
         tracks = tuple((t.kind, t.full_scale, t.name) for t in project.tracks)
         return (g.px_per_unit, g.lane_height, tracks, project.loop, project.axis)
 
+    def known_edges(self, track: Track) -> tuple[np.ndarray, np.ndarray] | None:
+        """The starts and ends of a track's clips as its lane holds them, if the lane shows
+        this very track object (what snapping sorts instead of walking the clips)."""
+        shown = self._shown.get(track.id)
+        if shown is None or shown.track is not track:
+            return None
+        return shown.clips.starts, shown.clips.ends
+
     def clip_at(self, pos: QPointF) -> ClipItem | None:
         """The clip under a scene position (the one drawn on top)."""
         return self.layer.clip_at(pos)

@@ -73,7 +73,7 @@ class TimelineView(QGraphicsView):
         self.doc = doc
         self.snapping = True
         self.ripple = False  # Edit > Ripple edit: trims and deletes move the later clips
-        self._edges = EdgeIndex()
+        self._edges = EdgeIndex(self._scene.known_edges)
         self.gesture: Gesture | None = None
         self.drop: PaletteDrop | None = None
         self.menu: QMenu | None = None  # the last context menu shown

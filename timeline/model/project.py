@@ -7,7 +7,8 @@ and A/B variants are cheap snapshots of the same states.
 from __future__ import annotations
 
 import math
-from bisect import bisect_left
+from bisect import bisect_left, insort
+from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from types import MappingProxyType
@@ -26,6 +27,7 @@ FADE_SHAPES = ("linear", "equal-power", "exponential", "s-curve")
 STRETCH_MODES = ("squeeze", "repeat")
 DEFAULT_TIME_RATE = 10_000.0  # Hz: the paper's knob servo rate
 DEFAULT_POSITION_RATE = 180.0 / math.pi / 0.01  # samples per radian: one every 0.01 degree
+_FEW_CHANGES = 64  # clips gone and come beyond which a new track sorts its clips' ends anew
 
 
 @dataclass(frozen=True)
@@ -173,9 +175,41 @@ class Track:
         return self.clips[first : bisect_left(starts, t1 + margin)]
 
     @cached_property
+    def _ends(self) -> list[float]:
+        """The clips' ends in ascending order (a track made by `with_clips` gets them from the
+        track it came from, not from a walk over its clips)."""
+        return sorted(c.end for c in self.clips)
+
+    @property
     def end(self) -> float:
         """End of the track's last-ending clip (0 for an empty track)."""
-        return max((c.end for c in self.clips), default=0.0)
+        ends = self._ends
+        return ends[-1] if ends else 0.0
+
+    def with_clips(
+        self, clips: tuple[Clip, ...], gone: Iterable[Clip] = (), came: Iterable[Clip] = ()
+    ) -> Track:
+        """This track holding `clips`, which are its clips less `gone` plus `came`.
+
+        When this track's ends are known, the new track's are them less the ends of `gone` plus
+        those of `came` (bisection, and a copy of a list of floats), so moving one clip of a
+        long track does not walk its clips to find where the track ends.
+        """
+        track = replace(self, clips=clips)
+        known = self.__dict__.get("_ends")
+        gone, came = list(gone), list(came)
+        if known is None or len(gone) + len(came) > _FEW_CHANGES:
+            return track
+        ends = list(known)
+        for clip in gone:
+            at = bisect_left(ends, clip.end)
+            if at == len(ends) or ends[at] != clip.end:
+                return track  # not one of this track's clips: the new track finds its own
+            del ends[at]
+        for clip in came:
+            insort(ends, clip.end)
+        track.__dict__["_ends"] = ends
+        return track
 
 
 @dataclass(frozen=True)
