@@ -18,6 +18,9 @@ AFTER_FIRST_PAINT = (
     "timeline.plugins.device_protocol.telemetry", "timeline.rendering.playback", "csv",
     # the import formats' registry and the breakpoint analysis of designs
     "timeline.plugins.file_formats", "timeline.analysis.breakpoints",
+    # the sound analysis's settings and their panel (with the import dock first shown), and
+    # the recordings' content hash (with the first recording)
+    "timeline.analysis.settings", "timeline.gui.analysis_panel", "hashlib",
 )  # fmt: skip
 
 PROBE = """
