@@ -49,7 +49,9 @@ print(json.dumps(seen))
 
 def test_the_first_paint_waits_for_neither_autosave_nor_playing_nor_formats(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
-    env.update(QT_QPA_PLATFORM="offscreen", XDG_DATA_HOME=str(tmp_path))
+    # no autosave of the user's offered, and no window state of theirs (a shown dock) restored
+    env.update(QT_QPA_PLATFORM="offscreen", XDG_DATA_HOME=str(tmp_path),
+               XDG_CONFIG_HOME=str(tmp_path))  # fmt: skip
     done = subprocess.run(
         [sys.executable, "-c", PROBE, str(EXAMPLE), *AFTER_FIRST_PAINT],
         capture_output=True,
