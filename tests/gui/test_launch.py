@@ -21,6 +21,8 @@ AFTER_FIRST_PAINT = (
     # the sound analysis's settings and their panel (with the import dock first shown), and
     # the recordings' content hash (with the first recording)
     "timeline.analysis.settings", "timeline.gui.analysis_panel", "hashlib",
+    # the lanes' gestures (every one is built on the base; the palette's drop is not)
+    "timeline.gui.gestures.base", "timeline.gui.gestures.palette_drop",
 )  # fmt: skip
 
 PROBE = """
