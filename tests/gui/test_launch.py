@@ -18,6 +18,11 @@ AFTER_FIRST_PAINT = (
     "timeline.plugins.device_protocol.telemetry", "timeline.rendering.playback", "csv",
     # the import formats' registry and the breakpoint analysis of designs
     "timeline.plugins.file_formats", "timeline.analysis.breakpoints",
+    # the sound analysis's settings and their panel (with the import dock first shown), and
+    # the recordings' content hash (with the first recording)
+    "timeline.analysis.settings", "timeline.gui.analysis_panel", "hashlib",
+    # the lanes' gestures (every one is built on the base; the palette's drop is not)
+    "timeline.gui.gestures.base", "timeline.gui.gestures.palette_drop",
 )  # fmt: skip
 
 PROBE = """
@@ -46,7 +51,9 @@ print(json.dumps(seen))
 
 def test_the_first_paint_waits_for_neither_autosave_nor_playing_nor_formats(tmp_path):
     env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
-    env.update(QT_QPA_PLATFORM="offscreen", XDG_DATA_HOME=str(tmp_path))
+    # no autosave of the user's offered, and no window state of theirs (a shown dock) restored
+    env.update(QT_QPA_PLATFORM="offscreen", XDG_DATA_HOME=str(tmp_path),
+               XDG_CONFIG_HOME=str(tmp_path))  # fmt: skip
     done = subprocess.run(
         [sys.executable, "-c", PROBE, str(EXAMPLE), *AFTER_FIRST_PAINT],
         capture_output=True,

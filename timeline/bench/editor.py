@@ -157,6 +157,8 @@ def _least_median(values: list[float]) -> str:
 def _child_launch(path: str, home: str) -> None:
     """Open the editor as `haptic-timeline edit` does; print when its first paint is done."""
     os.environ["XDG_DATA_HOME"] = home  # no autosave of the user's is offered
+    # nor the user's window state restored (QSettings): every launch starts from the same one
+    os.environ["XDG_CONFIG_HOME"] = home
     from timeline.gui.app import launch  # the first import, as in `haptic-timeline edit`
     from timeline.gui.first_paint import after_first_paint
 

@@ -32,7 +32,6 @@ from .document import Document
 from .file_jobs import FileJob, export_job, finish_export, import_job
 from .first_paint import after_first_paint
 from .geometry import LANE_HEIGHT
-from .gestures.pivot import PivotGesture
 from .message_bar import MessageBar
 from .player import Player
 from .ripple import remove_rippled
@@ -468,6 +467,8 @@ class MainWindow(QMainWindow):
         at = self.view.menu_at
         item = self.view.item_at(self.view.mapFromScene(at).toPointF())
         if item is not None:
+            from .gestures.pivot import PivotGesture  # with the first clip menu
+
             clip_id = item.clip.id
             here = menu.addAction("Set &mirror line here")
             here.setToolTip("The clip's horizontal mirror line at this level (Ctrl+Shift+click)")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QEvent, QObject, QPoint, QPointF, Qt, Signal
 from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QWheelEvent
@@ -16,20 +17,13 @@ from .clip_item import ClipItem
 from .document import Document
 from .fade_menu import fade_shape_menu
 from .geometry import Geometry
-from .gestures.amplitude import AmplitudeGesture
-from .gestures.base import Gesture
-from .gestures.fade import FadeGesture
-from .gestures.gain import GainGesture
-from .gestures.move import MoveGesture
-from .gestures.palette_drop import PaletteDrop, dropped_tile
-from .gestures.pivot import PivotGesture, places_mirror_line
-from .gestures.rubber_band import RubberBandGesture
-from .gestures.select import extended
-from .gestures.stretch import StretchGesture
-from .gestures.trim import TrimGesture
 from .snap_line import SnapLine
 from .snapping import EdgeIndex, snap
 from .timeline_scene import TimelineScene
+
+if TYPE_CHECKING:  # the gestures load with the first press or drop, after the first paint
+    from .gestures.base import Gesture
+    from .gestures.palette_drop import PaletteDrop
 
 SNAP_PX = 8.0
 ZOOM_STEP = 1.25
@@ -219,6 +213,10 @@ class TimelineView(QGraphicsView):
         if event.button() != Qt.MouseButton.LeftButton:
             super().mousePressEvent(event)
             return
+        from .gestures.pivot import places_mirror_line  # the gestures: with the first press
+        from .gestures.rubber_band import RubberBandGesture
+        from .gestures.select import extended
+
         pos = self.mapToScene(event.position().toPoint())
         mods = event.modifiers()
         item = self.item_at(event.position())
@@ -243,6 +241,14 @@ class TimelineView(QGraphicsView):
         self.gesture = self._gesture_for(item, pos, mods)
 
     def _gesture_for(self, item: ClipItem, pos: QPointF, mods) -> Gesture:
+        from .gestures.amplitude import AmplitudeGesture
+        from .gestures.fade import FadeGesture
+        from .gestures.gain import GainGesture
+        from .gestures.move import MoveGesture
+        from .gestures.pivot import PivotGesture, places_mirror_line
+        from .gestures.stretch import StretchGesture
+        from .gestures.trim import TrimGesture
+
         zone = item.zone(item.mapFromScene(pos))
         clip_id = item.clip.id
         shift = bool(mods & Qt.KeyboardModifier.ShiftModifier)
@@ -302,6 +308,8 @@ class TimelineView(QGraphicsView):
     # --- drops: palette tiles and files ----------------------------------------------------
 
     def dragEnterEvent(self, event: QDragEnterEvent) -> None:
+        from .gestures.palette_drop import PaletteDrop, dropped_tile  # with the first drop
+
         tile_id = dropped_tile(event.mimeData())
         if tile_id is not None and tile_id in self.doc.project.tiles:
             self.drop = PaletteDrop(self, tile_id)

@@ -8,8 +8,6 @@ of BLOCK samples, so no pass makes a full-size temporary (a boolean mask of an h
 
 from __future__ import annotations
 
-import hashlib
-
 import numpy as np
 
 BLOCK = 1 << 20
@@ -52,6 +50,8 @@ class ContentKey:
     """
 
     def __init__(self, dtype: np.dtype) -> None:
+        import hashlib  # with the first recording, not at start-up (~3 ms)
+
         self.dtype = np.dtype(dtype)
         self._hash = hashlib.blake2b(digest_size=16)
 
