@@ -10,7 +10,7 @@ costs the same as a few clips; a lane showing fewer draws each clip's waveform, 
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from functools import cache, cached_property
 from typing import cast
 
@@ -126,7 +126,7 @@ class ClipLayer(QGraphicsItem):
 
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
         exposed = option.exposedRect
-        parts = _painted_parts(painter, exposed)
+        parts = painted_parts(painter, exposed)
         inside: dict[int, list[np.ndarray]] = {}  # lane -> clips in the parts Qt really paints
         for part in parts if len(parts) > 1 else ():
             for lane, _, found in self.visible(part):
@@ -281,7 +281,7 @@ def _premultiplied(rgba: int, opacity: float) -> int:
     return int(np.frombuffer(pixel.constBits(), dtype=np.uint32, count=1)[0])
 
 
-def _painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
+def painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
     """The rectangles of `exposed` that this paint really covers, in the painter's coordinates.
 
     Qt hands an item the bounding rectangle of what is repainted: a dragged clip's rectangles
@@ -299,6 +299,21 @@ def _painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
     rects = cast("Iterable[QRect]", region)  # QRegion iterates its rectangles; its stubs omit it
     parts = [inverse.mapRect(QRectF(rect)).intersected(exposed) for rect in rects]
     return [part for part in parts if not part.isEmpty()] or [exposed]
+
+
+def in_parts(painter: QPainter, exposed: QRectF, draw: Callable[[QRectF], None]) -> None:
+    """`draw` what lies in `exposed`, called once per part of it this paint really covers
+    (`painted_parts`), each clipped to its part so that a blended pixel is drawn once: a drag
+    move repaints its clip's rectangles and the snap line's strip, not the box around them."""
+    parts = painted_parts(painter, exposed)
+    if len(parts) == 1:
+        draw(parts[0])
+        return
+    for part in parts:
+        painter.save()
+        painter.setClipRect(part, Qt.ClipOperation.IntersectClip)
+        draw(part)
+        painter.restore()
 
 
 def _over(item: ClipItem, pos: QPointF) -> bool:

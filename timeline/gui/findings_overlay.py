@@ -27,7 +27,7 @@ from timeline.model import Project
 from timeline.plugins.device_protocol import DeviceInfo, Hand, open_device
 from timeline.plugins.track_kinds import track_kind
 
-from .clip_layer import runs
+from .clip_layer import in_parts, runs
 from .first_paint import after_first_paint
 from .geometry import Geometry
 from .lane_scale import visible_lanes
@@ -162,15 +162,18 @@ class ShadeLayer(QGraphicsItem):
         return ""
 
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
-        exposed = option.exposedRect
-        g = self.g
-        left = math.floor(exposed.left()) - 2
-        right = max(math.ceil(exposed.right()) + 2, left + 1)
-        lanes_shown = visible_lanes(g, 1 << 30, exposed)
         font = painter.font()
         font.setPointSizeF(7.5)
         painter.setFont(font)
         painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # rectangles on pixels
+        in_parts(painter, option.exposedRect, lambda part: self._paint_part(painter, part))
+
+    def _paint_part(self, painter: QPainter, exposed: QRectF) -> None:
+        """The shading in one exposed rectangle."""
+        g = self.g
+        left = math.floor(exposed.left()) - 2
+        right = max(math.ceil(exposed.right()) + 2, left + 1)
+        lanes_shown = visible_lanes(g, 1 << 30, exposed)
         for index, grp in enumerate(self.groups):
             lanes = [lane for lane in grp.lanes if lane in lanes_shown]
             if not lanes:
@@ -184,7 +187,7 @@ class ShadeLayer(QGraphicsItem):
             for lane in lanes:
                 top = g.lane_top(lane)
                 for strip in strips:
-                    painter.drawImage(QPointF(strip.left, top), strip.image(top))
+                    strip.draw(painter, top)
                 for a, b, kind in labels:
                     painter.drawText(
                         QRectF(a, top + 1, b - a, g.lane_height - 2).adjusted(3, 0, -2, -2),
@@ -236,14 +239,25 @@ class _Strip:
     ) -> None:
         self.left, self.right, self.area = left, right, area
         self.spans, self.labels, self.g = spans, labels, geometry
-        self._images: dict[float, QImage] = {}
+        self._images: dict[float, tuple[QImage, list[tuple[int, int]]]] = {}
 
-    def image(self, top: float) -> QImage:
-        """The picture for a lane whose top is at this scene y."""
+    def image(self, top: float) -> tuple[QImage, list[tuple[int, int]]]:
+        """The picture for a lane whose top is at this scene y, and its columns that hold
+        shading (runs of them, from left to right)."""
         phase = top % 8
         if phase not in self._images:
-            self._images[phase] = self._paint(top)
+            image = self._paint(top)
+            self._images[phase] = (image, _shaded_columns(image))
         return self._images[phase]
+
+    def draw(self, painter: QPainter, top: float) -> None:
+        """Draw the shading on the lane whose top is at this scene y: only its shaded columns
+        (blending the transparent rest changes no pixel but costs as much per pixel)."""
+        image, columns = self.image(top)
+        height = image.height()
+        for a, b in columns:
+            target = QRectF(self.left + a, top, b - a, height)
+            painter.drawImage(target, image, QRectF(a, 0, b - a, height))
 
     def _paint(self, top: float) -> QImage:
         g, left, right = self.g, self.left, self.right
@@ -261,6 +275,23 @@ class _Strip:
         painter.drawRects(rects)
         painter.end()
         return image
+
+
+def _shaded_columns(image: QImage) -> list[tuple[int, int]]:
+    """The runs [a, b) of an image's columns holding a pixel not fully transparent, runs less
+    than GAP_PX apart joined (a drawing call costs about as much as blending that many)."""
+    width, height = image.width(), image.height()
+    rows = np.frombuffer(image.constBits(), dtype=np.uint32, count=height * width)
+    used = np.flatnonzero(rows.reshape(height, width).any(axis=0))
+    if used.size == 0:
+        return []
+    breaks = np.flatnonzero(np.diff(used) > GAP_PX) + 1
+    starts = used[np.concatenate(([0], breaks))]
+    stops = used[np.concatenate((breaks - 1, [used.size - 1]))] + 1
+    return list(zip(starts.tolist(), stops.tolist(), strict=True))
+
+
+GAP_PX = 32  # shaded columns this close are drawn in one call
 
 
 def summary(report: Report) -> str:
