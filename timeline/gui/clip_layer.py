@@ -10,7 +10,8 @@ costs the same as a few clips; a lane showing fewer draws each clip's waveform, 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+import math
+from collections.abc import Iterable, Sequence
 from functools import cache, cached_property
 from typing import cast
 
@@ -126,7 +127,7 @@ class ClipLayer(QGraphicsItem):
 
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
         exposed = option.exposedRect
-        parts = painted_parts(painter, exposed)
+        parts = _painted_parts(painter, exposed)
         inside: dict[int, list[np.ndarray]] = {}  # lane -> clips in the parts Qt really paints
         for part in parts if len(parts) > 1 else ():
             for lane, _, found in self.visible(part):
@@ -268,6 +269,30 @@ def fill_runs(
     painter.setOpacity(opacity)
 
 
+def fill_column(painter: QPainter, pixels: np.ndarray, top: int, left: float, right: float) -> None:
+    """Fill rows of the scene from `top`, one premultiplied pixel a row (`premultiplied`; 0
+    leaves a row as it is), across the columns from `left` to `right` as one image: the pixels
+    `fillRect` sets for each row's rectangle of whole pixels, in one call instead of one a row
+    (the lanes' bands and edges, the scale's level lines). Columns of a partly covered pixel at
+    either end are filled whole: a paint's exposed rectangle ends on whole pixels."""
+    x0, x1 = math.floor(left), math.ceil(right)
+    if pixels.size == 0 or x1 <= x0:
+        return
+    column = np.ascontiguousarray(pixels, dtype=np.uint32)
+    image = QImage(column.data, 1, column.size, 4, QImage.Format.Format_ARGB32_Premultiplied)
+    opacity = painter.opacity()
+    painter.setOpacity(1.0)  # already in the pixels
+    # the column stretched across (each pixel repeated, not interpolated)
+    target = QRectF(x0, top, x1 - x0, column.size)
+    painter.drawImage(target, image, QRectF(0, 0, 1, column.size))
+    painter.setOpacity(opacity)
+
+
+def premultiplied(colour: QColor, opacity: float = 1.0) -> int:
+    """The premultiplied pixel a fill of this colour at this opacity blends (for `fill_column`)."""
+    return _premultiplied(colour.rgba(), opacity)
+
+
 @cache
 def _premultiplied(rgba: int, opacity: float) -> int:
     """The premultiplied pixel Qt blends for a fill of this colour (QColor.rgba) at this
@@ -281,7 +306,7 @@ def _premultiplied(rgba: int, opacity: float) -> int:
     return int(np.frombuffer(pixel.constBits(), dtype=np.uint32, count=1)[0])
 
 
-def painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
+def _painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
     """The rectangles of `exposed` that this paint really covers, in the painter's coordinates.
 
     Qt hands an item the bounding rectangle of what is repainted: a dragged clip's rectangles
@@ -299,21 +324,6 @@ def painted_parts(painter: QPainter, exposed: QRectF) -> list[QRectF]:
     rects = cast("Iterable[QRect]", region)  # QRegion iterates its rectangles; its stubs omit it
     parts = [inverse.mapRect(QRectF(rect)).intersected(exposed) for rect in rects]
     return [part for part in parts if not part.isEmpty()] or [exposed]
-
-
-def in_parts(painter: QPainter, exposed: QRectF, draw: Callable[[QRectF], None]) -> None:
-    """`draw` what lies in `exposed`, called once per part of it this paint really covers
-    (`painted_parts`), each clipped to its part so that a blended pixel is drawn once: a drag
-    move repaints its clip's rectangles and the snap line's strip, not the box around them."""
-    parts = painted_parts(painter, exposed)
-    if len(parts) == 1:
-        draw(parts[0])
-        return
-    for part in parts:
-        painter.save()
-        painter.setClipRect(part, Qt.ClipOperation.IntersectClip)
-        draw(part)
-        painter.restore()
 
 
 def _over(item: ClipItem, pos: QPointF) -> bool:

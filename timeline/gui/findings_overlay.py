@@ -27,7 +27,7 @@ from timeline.model import Project
 from timeline.plugins.device_protocol import DeviceInfo, Hand, open_device
 from timeline.plugins.track_kinds import track_kind
 
-from .clip_layer import in_parts, runs
+from .clip_layer import runs
 from .first_paint import after_first_paint
 from .geometry import Geometry
 from .lane_scale import visible_lanes
@@ -162,26 +162,20 @@ class ShadeLayer(QGraphicsItem):
         return ""
 
     def paint(self, painter: QPainter, option, widget=None) -> None:  # noqa: ANN001
-        font = painter.font()
-        font.setPointSizeF(7.5)
-        painter.setFont(font)
-        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # rectangles on pixels
-        in_parts(painter, option.exposedRect, lambda part: self._paint_part(painter, part))
-
-    def _paint_part(self, painter: QPainter, exposed: QRectF) -> None:
-        """The shading in one exposed rectangle."""
+        exposed = option.exposedRect
         g = self.g
         left = math.floor(exposed.left()) - 2
         right = max(math.ceil(exposed.right()) + 2, left + 1)
         lanes_shown = visible_lanes(g, 1 << 30, exposed)
+        font = painter.font()
+        font.setPointSizeF(7.5)
+        painter.setFont(font)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # rectangles on pixels
         for index, grp in enumerate(self.groups):
             lanes = [lane for lane in grp.lanes if lane in lanes_shown]
             if not lanes:
                 continue
-            strips = [
-                self._strip(index, grp, start, min(right, start + STRIP_PX))
-                for start in range(left, right, STRIP_PX)
-            ]
+            strips = [self._strip(index, grp, a, b) for a, b in _strip_columns(left, right)]
             labels = dict.fromkeys(label for strip in strips for label in strip.labels)
             painter.setPen(EDGES[grp.area])
             for lane in lanes:
@@ -214,12 +208,26 @@ class ShadeLayer(QGraphicsItem):
         kinds = [grp.findings[i].kind for i in seen[wide].tolist()]
         labels = list(zip(x0[wide].tolist(), x1[wide].tolist(), kinds, strict=True))
         spans = runs(x0[~wide], x1[~wide]) + [(a, b) for a, b, _ in labels]
-        strip = _Strip(left, right, grp.area, spans, labels, g)
+        columns = _shaded_columns(x0, x1, left, right)
+        strip = _Strip(left, right, grp.area, spans, labels, columns, g)
         self._strips[(index, left, right)] = strip
         return strip
 
 
 STRIP_PX = 2048  # the shading is painted in strips at most this wide
+CHUNK_PX = 256  # a narrow repaint's strips: columns at multiples of this, kept for the next
+
+
+def _strip_columns(left: int, right: int) -> list[tuple[int, int]]:
+    """The strips' columns [a, b) for an exposed range: its own for a wide one (a paint at a
+    new zoom), fixed chunks for a narrow one, so that the next repaint nearby (a drag move's:
+    the clip and the snap line) finds them painted."""
+    if right - left > 2 * CHUNK_PX:
+        return [(a, min(right, a + STRIP_PX)) for a in range(left, right, STRIP_PX)]
+    first = left // CHUNK_PX * CHUNK_PX
+    return [(a, a + CHUNK_PX) for a in range(first, right, CHUNK_PX)]
+
+
 MAX_STRIPS = 64  # strips kept (scrolling at one zoom paints new ones)
 
 
@@ -235,27 +243,29 @@ class _Strip:
         area: str,
         spans: list[tuple[float, float]],
         labels: list[tuple[float, float, str]],
+        columns: list[tuple[int, int]],
         geometry: Geometry,
     ) -> None:
         self.left, self.right, self.area = left, right, area
         self.spans, self.labels, self.g = spans, labels, geometry
-        self._images: dict[float, tuple[QImage, list[tuple[int, int]]]] = {}
+        self.columns = columns  # the runs of its columns `draw` draws
+        self._images: dict[float, QImage] = {}
 
-    def image(self, top: float) -> tuple[QImage, list[tuple[int, int]]]:
-        """The picture for a lane whose top is at this scene y, and its columns that hold
-        shading (runs of them, from left to right)."""
+    def image(self, top: float) -> QImage:
+        """The picture for a lane whose top is at this scene y."""
         phase = top % 8
         if phase not in self._images:
-            image = self._paint(top)
-            self._images[phase] = (image, _shaded_columns(image))
+            self._images[phase] = self._paint(top)
         return self._images[phase]
 
     def draw(self, painter: QPainter, top: float) -> None:
-        """Draw the shading on the lane whose top is at this scene y: only its shaded columns
-        (blending the transparent rest changes no pixel but costs as much per pixel)."""
-        image, columns = self.image(top)
+        """Draw the shading on the lane whose top is at this scene y: only the columns its spans
+        touch (blending the transparent rest changes no pixel but costs as much per pixel)."""
+        if not self.columns:
+            return
+        image = self.image(top)
         height = image.height()
-        for a, b in columns:
+        for a, b in self.columns:
             target = QRectF(self.left + a, top, b - a, height)
             painter.drawImage(target, image, QRectF(a, 0, b - a, height))
 
@@ -277,18 +287,20 @@ class _Strip:
         return image
 
 
-def _shaded_columns(image: QImage) -> list[tuple[int, int]]:
-    """The runs [a, b) of an image's columns holding a pixel not fully transparent, runs less
-    than GAP_PX apart joined (a drawing call costs about as much as blending that many)."""
-    width, height = image.width(), image.height()
-    rows = np.frombuffer(image.constBits(), dtype=np.uint32, count=height * width)
-    used = np.flatnonzero(rows.reshape(height, width).any(axis=0))
-    if used.size == 0:
+def _shaded_columns(x0: np.ndarray, x1: np.ndarray, left: int, right: int) -> list[tuple[int, int]]:
+    """The runs [a, b) of a strip's columns (from its left) that rectangles from x0 to x1 can
+    touch (a pixel of outline each side), runs less than GAP_PX apart joined (a drawing call
+    costs about as much as blending that many pixels)."""
+    if x0.size == 0:
         return []
-    breaks = np.flatnonzero(np.diff(used) > GAP_PX) + 1
-    starts = used[np.concatenate(([0], breaks))]
-    stops = used[np.concatenate((breaks - 1, [used.size - 1]))] + 1
-    return list(zip(starts.tolist(), stops.tolist(), strict=True))
+    starts = np.clip(np.floor(x0) - 1 - left, 0, right - left)
+    stops = np.clip(np.ceil(x1) + 2 - left, 0, right - left)
+    order = np.argsort(starts, kind="stable")
+    a, b = starts[order], np.maximum.accumulate(stops[order])
+    breaks = np.flatnonzero(a[1:] > b[:-1] + GAP_PX) + 1
+    firsts = np.concatenate(([0], breaks))
+    lasts = np.concatenate((breaks - 1, [a.size - 1]))
+    return [(int(x), int(y)) for x, y in zip(a[firsts], b[lasts], strict=True) if y > x]
 
 
 GAP_PX = 32  # shaded columns this close are drawn in one call

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtCore import QEvent, QObject, QPoint, QPointF, QRectF, Qt, Signal
+from PySide6.QtCore import QEvent, QObject, QPoint, QPointF, Qt, Signal
 from PySide6.QtGui import QDragEnterEvent, QDropEvent, QMouseEvent, QPainter, QWheelEvent
 from PySide6.QtWidgets import QGraphicsView, QLabel, QMenu, QWidget
 
@@ -13,7 +13,6 @@ from timeline.model import Track
 
 from . import lane_scale
 from .clip_item import ClipItem
-from .clip_layer import in_parts
 from .document import Document
 from .fade_menu import fade_shape_menu
 from .geometry import Geometry
@@ -172,13 +171,9 @@ class TimelineView(QGraphicsView):
     def drawBackground(self, painter: QPainter, rect) -> None:
         painter.save()
         painter.setRenderHint(QPainter.RenderHint.Antialiasing, False)  # level lines on pixels
-        in_parts(painter, QRectF(rect), lambda part: self._draw_background(painter, part))
-        painter.restore()
-
-    def _draw_background(self, painter: QPainter, rect: QRectF) -> None:
-        """The lanes, the grid and the scale's level lines in one exposed rectangle."""
         super().drawBackground(painter, rect)
         lane_scale.draw_grid(painter, self.lane_geometry, self.doc.project, rect)
+        painter.restore()
 
     def drawForeground(self, painter: QPainter, rect) -> None:
         visible = self.mapToScene(self.viewport().rect()).boundingRect()
