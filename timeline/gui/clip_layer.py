@@ -10,7 +10,6 @@ costs the same as a few clips; a lane showing fewer draws each clip's waveform, 
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable, Sequence
 from functools import cache, cached_property
 from typing import cast
@@ -267,30 +266,6 @@ def fill_runs(
     target = QRectF(first, float(row0), float(pixels.size), float(rows))
     painter.drawImage(target, image, QRectF(0, 0, pixels.size, 1))
     painter.setOpacity(opacity)
-
-
-def fill_column(painter: QPainter, pixels: np.ndarray, top: int, left: float, right: float) -> None:
-    """Fill rows of the scene from `top`, one premultiplied pixel a row (`premultiplied`; 0
-    leaves a row as it is), across the columns from `left` to `right` as one image: the pixels
-    `fillRect` sets for each row's rectangle of whole pixels, in one call instead of one a row
-    (the lanes' bands and edges, the scale's level lines). Columns of a partly covered pixel at
-    either end are filled whole: a paint's exposed rectangle ends on whole pixels."""
-    x0, x1 = math.floor(left), math.ceil(right)
-    if pixels.size == 0 or x1 <= x0:
-        return
-    column = np.ascontiguousarray(pixels, dtype=np.uint32)
-    image = QImage(column.data, 1, column.size, 4, QImage.Format.Format_ARGB32_Premultiplied)
-    opacity = painter.opacity()
-    painter.setOpacity(1.0)  # already in the pixels
-    # the column stretched across (each pixel repeated, not interpolated)
-    target = QRectF(x0, top, x1 - x0, column.size)
-    painter.drawImage(target, image, QRectF(0, 0, 1, column.size))
-    painter.setOpacity(opacity)
-
-
-def premultiplied(colour: QColor, opacity: float = 1.0) -> int:
-    """The premultiplied pixel a fill of this colour at this opacity blends (for `fill_column`)."""
-    return _premultiplied(colour.rgba(), opacity)
 
 
 @cache

@@ -3,9 +3,6 @@ in the track's display unit (mNm, mNm*s/deg, ...) at the left edge of the visibl
 
 from __future__ import annotations
 
-import math
-
-import numpy as np
 from PySide6.QtCore import QPointF, QRectF
 from PySide6.QtGui import QColor, QFont, QPainter
 
@@ -13,12 +10,10 @@ from timeline.model import Project, Track
 from timeline.plugins.track_kinds import track_kind
 
 from .clip_item import value_offset
-from .clip_layer import fill_column, premultiplied
 from .geometry import CLIP_MARGIN, Geometry
 
 LEVELS = (1.0, 0.5, 0.0, -0.5, -1.0)
 LABELLED = (1.0, 0.0, -1.0)
-LEVEL, LEVEL_ZERO = QColor(0, 0, 0, 22), QColor(0, 0, 0, 45)  # the grid's lines, its zero
 
 
 def full_scale_text(track: Track, value: float) -> str:
@@ -44,17 +39,14 @@ def draw_grid(painter: QPainter, g: Geometry, project: Project | None, rect: QRe
     """Light horizontal lines at the scale's levels on every lane (under the clips)."""
     if project is None:
         return
-    # pixel-high fills (a blended line across the lanes cost 20x more), as one column of
-    # pixels stretched across (a fill a row cost ~20 us each)
-    row0 = math.floor(rect.top())
-    rows = np.zeros(max(0, math.ceil(rect.bottom()) - row0), dtype=np.uint32)
     for lane in visible_lanes(g, len(project.tracks), rect):
         for value in LEVELS:
             y = level_y(g, lane, value)
-            row = round(y - 0.5) - row0
-            if rect.top() <= y <= rect.bottom() and 0 <= row < rows.size:
-                rows[row] = premultiplied(LEVEL_ZERO if value == 0 else LEVEL, painter.opacity())
-    fill_column(painter, rows, row0, rect.left(), rect.right())
+            if rect.top() <= y <= rect.bottom():
+                alpha = 45 if value == 0 else 22
+                # a pixel-high fill: a blended line across the lanes cost 20x more
+                row = QRectF(rect.left(), round(y - 0.5), rect.width(), 1)
+                painter.fillRect(row, QColor(0, 0, 0, alpha))
 
 
 def draw_labels(painter: QPainter, g: Geometry, project: Project | None, visible: QRectF) -> None:
