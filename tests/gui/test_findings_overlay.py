@@ -154,8 +154,8 @@ def test_the_shading_kept_between_paints_is_painted_again_when_the_findings_chan
 
 def test_a_drag_over_the_shading_repaints_what_a_fresh_paint_draws(stiff_window) -> None:
     """A snapped drag move repaints its clip's rectangles and the snap line's strip across the
-    shaded lane, each part painted once (the background's level lines and the shading are
-    blended: painted twice where parts meet, they would show darker)."""
+    shaded lane, the shading from strips at fixed columns kept between moves: what the window
+    holds after the moves is what a fresh paint of it draws."""
     from PySide6.QtCore import QPoint
     from PySide6.QtTest import QTest
     from PySide6.QtWidgets import QApplication
@@ -188,7 +188,7 @@ def test_a_drag_over_the_shading_repaints_what_a_fresh_paint_draws(stiff_window)
     pixels = [_pixels(p.toImage()) for p in (painted, fresh)]
     assert pixels[0].shape == pixels[1].shape
     # the snap line and the edit cursor, lines at half pixels, are rasterized a column or a few
-    # levels apart when only their strip is painted (so before these parts too): left out
+    # levels apart when only their strip is painted (so before these changes too): left out
     scene = win.view.scene()
     for x in (line.line.line().x1(), scene.cursor.line().x1()):
         at_x = win.view.mapFromScene(x, 0).x()
