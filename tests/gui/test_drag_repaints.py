@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections import Counter
 
+import numpy as np
 import pytest
 from PySide6.QtCore import QEvent, QObject, QPoint, Qt
 from PySide6.QtGui import QImage
@@ -109,3 +110,34 @@ def test_a_clip_dragged_on_a_crowded_lane_is_drawn_as_a_fresh_paint_draws_it(win
     QTest.mouseRelease(viewport, LEFT, NO, at + QPoint(20, 0))
     assert painted.size() == fresh.size()
     assert _pixels(painted.toImage()) == _pixels(fresh.toImage())
+
+
+def test_a_selected_clip_dragged_on_a_sparse_lane_leaves_no_trail(window):
+    """A lane of one clip draws it whole, its fade handles too: handles centred on the clip's
+    ends reached 4 px beyond its rectangle (all a moved clip repaints) and were left behind at
+    each move of a drag. Outside the clip (and its outline's pixel, which a clip at 64.99999 px
+    rounds either side) what the window holds is what a fresh paint draws."""
+    win = window
+    viewport = win.view.viewport()
+    at = clip_point(win, win.ids["c1"])
+    QTest.mousePress(viewport, LEFT, NO, at)
+    for step in range(1, 6):
+        QTest.mouseMove(viewport, at + QPoint(-7 * step, 0))
+        QApplication.processEvents()
+    corner = viewport.mapTo(win, QPoint(0, 0))
+    size = viewport.size()
+    screen = QApplication.primaryScreen()  # offscreen: what has been painted so far
+    painted = screen.grabWindow(win.winId(), corner.x(), corner.y(), size.width(), size.height())
+    fresh = viewport.grab()  # everything painted again
+    rect = win.view.mapFromScene(win.view.clip_scene_rect(win.ids["c1"])).boundingRect()
+    QTest.mouseRelease(viewport, LEFT, NO, at + QPoint(-35, 0))
+    assert win.doc.project.find_clip(win.ids["c1"])[1].start == pytest.approx(0.5 - 35 / 200)
+    before, after = (_pixel_array(p.toImage()) for p in (painted, fresh))
+    differs = (before != after).any(axis=2)
+    differs[rect.top() - 1 : rect.bottom() + 2, rect.left() - 1 : rect.right() + 2] = False
+    assert differs.sum() == 0
+
+
+def _pixel_array(image: QImage) -> np.ndarray:
+    rgb = image.convertToFormat(QImage.Format.Format_RGB32)
+    return np.frombuffer(rgb.constBits(), np.uint8).reshape(rgb.height(), rgb.width(), 4).copy()

@@ -290,7 +290,10 @@ class ClipItem:
                 painter.drawPolyline(QPolygonF(points))
             handle = self.fade_handle(which)
             painter.setBrush(QBrush(QColor("#ffffff")))
-            painter.drawRect(QRectF(handle.x() - 4, 0, 8, 8))
+            # inside the clip's rectangle at its ends (what a moved clip repaints): drawn
+            # centred there, half of it was left behind on the lane at each move of a drag
+            left = min(max(handle.x() - 4, 0.0), self._w - 8)
+            painter.drawRect(QRectF(left, 0, 8, 8))
             if length >= SHAPE_LABEL_PX:
                 font = QFont()
                 font.setPointSizeF(7.0)
