@@ -116,12 +116,16 @@ class Journal:
     _snapshot: threading.Thread | None = None
     _lock: threading.Lock = field(default_factory=threading.Lock)  # held while files go
     _epoch: int = 0  # a snapshot started before the latest removal writes nothing
+    _base: Project | None = None  # the state snapshot 0 holds (write_base's), while it is there
 
     def start(self, base: Project, meta: dict[str, Any], file: Path | None = None) -> None:
         """Begin anew (removing the files so far) from `base`: the content of `file` as it is
         now, or (None) a project the first record writes whole (EMPTY: none). Nothing is
-        written until the first record."""
-        self.remove()
+        written until the first record. Starting again at the state `write_base` wrote (an undo
+        back to it) keeps that snapshot, so the next first record need not hold it whole."""
+        kept = self._base if file is None and base is self._base else None
+        self.remove(keep_base=kept is not None)
+        self._base = kept
         info: dict[str, Any] = {"file": None}
         if file is not None:
             stat = Path(file).stat()
@@ -180,7 +184,7 @@ class Journal:
     def _open_first(self) -> None:
         assert self._state is not None
         base, meta = self._state, self._meta
-        based = not self.writing and snapshot_path(self.folder, 0).exists()  # write_base's
+        based = not self.writing and self._base is base and snapshot_path(self.folder, 0).exists()
         self._write_meta()
         self._open_generation(0)
         if based:
@@ -254,6 +258,7 @@ class Journal:
             for older in range(number):
                 journal_path(self.folder, older).unlink(missing_ok=True)
                 snapshot_path(self.folder, older).unlink(missing_ok=True)
+            self._base = project if number == 0 else None
 
     @property
     def writing(self) -> bool:
@@ -265,16 +270,23 @@ class Journal:
         if self._snapshot is not None:
             self._snapshot.join()
 
-    def remove(self) -> None:
-        """Delete the session's files (`start` begins the next); a snapshot being written is
-        waited for, one not yet started will not write."""
+    def remove(self, keep_base: bool = False) -> None:
+        """Delete the session's files (`start` begins the next), or all but the base snapshot
+        and meta.json (`keep_base`); a snapshot being written is waited for, one not yet
+        started will not write."""
         self._epoch += 1
         with self._lock:
             if self._generation is not None:
                 os.close(self._generation.fd)
                 self._generation = None
-            shutil.rmtree(self.folder, ignore_errors=True)
-        self._known, self._state = set(), None
+            if keep_base:
+                kept = {snapshot_path(self.folder, 0).name, "meta.json"}
+                for path in self.folder.glob("*"):
+                    if path.name not in kept:
+                        path.unlink(missing_ok=True)
+            else:
+                shutil.rmtree(self.folder, ignore_errors=True)
+        self._known, self._state, self._base = set(), None, None
 
 
 # --- reading -----------------------------------------------------------------------------------

@@ -149,9 +149,10 @@ class Autosaver(QObject):
     window busy redrawing put the journal off: a kill lost 15 edits.) The journal starts from
     the project file the document was opened from or saved to (`on_disk`); a project with no
     file of its own, clean for BASE_MS, is written as the base on a thread, else the first
-    record holds it whole (a 20,000-clip project: 0.36 s). Back at the saved state, and after a
-    save or a clean close, the session's files are removed. A write that fails says so through
-    `failed` (one line); the next change starts a journal anew.
+    record holds it whole (a 20,000-clip project: 0.36 s). Back at the saved state the session's
+    journal is removed (a base written for that state is kept, so an undo there costs the next
+    edit nothing), and after a save or a clean close all its files. A write that fails says so
+    through `failed` (one line); the next change starts a journal anew.
     """
 
     failed = Signal(str)
