@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import numpy as np
 from PySide6.QtCore import QEvent, QMimeData, QPoint, QPointF, Qt
-from PySide6.QtGui import QDragEnterEvent, QDragMoveEvent, QDropEvent
+from PySide6.QtGui import QDragEnterEvent, QDragMoveEvent, QDropEvent, QImage
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication
 
@@ -31,6 +32,24 @@ def drag(win, start: QPoint, end: QPoint, modifiers=NO, steps: int = 5) -> None:
         p = start + (end - start) * (i / steps)
         QTest.mouseMove(vp, p)
     QTest.mouseRelease(vp, Qt.MouseButton.LeftButton, modifiers, end)
+
+
+def painted_and_fresh(win) -> tuple[QImage, QImage]:
+    """The lanes as painted so far (offscreen: the window's backing store) and as a fresh paint
+    of them draws them."""
+    viewport = win.view.viewport()
+    corner = viewport.mapTo(win, QPoint(0, 0))
+    screen = QApplication.primaryScreen()
+    painted = screen.grabWindow(
+        win.winId(), corner.x(), corner.y(), viewport.width(), viewport.height()
+    )
+    return painted.toImage(), viewport.grab().toImage()
+
+
+def pixel_array(image: QImage) -> np.ndarray:
+    """An image's pixels as a (height, width, 4) array of RGB32 bytes."""
+    rgb = image.convertToFormat(QImage.Format.Format_RGB32)
+    return np.frombuffer(rgb.constBits(), np.uint8).reshape(rgb.height(), rgb.width(), 4).copy()
 
 
 def click(win, at: QPoint, modifiers=NO) -> None:

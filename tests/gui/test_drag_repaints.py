@@ -7,7 +7,6 @@ from __future__ import annotations
 
 from collections import Counter
 
-import numpy as np
 import pytest
 from PySide6.QtCore import QEvent, QObject, QPoint, Qt
 from PySide6.QtGui import QImage
@@ -16,7 +15,7 @@ from PySide6.QtWidgets import QApplication, QWidget
 
 from timeline import edits
 
-from .helpers import clip_point
+from .helpers import clip_point, painted_and_fresh, pixel_array
 
 LEFT, NO = Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
 
@@ -102,14 +101,10 @@ def test_a_clip_dragged_on_a_crowded_lane_is_drawn_as_a_fresh_paint_draws_it(win
         QTest.mouseMove(viewport, at + QPoint(4 * step, 0))
         QApplication.processEvents()
     assert win.doc.project.find_clip(added[5])[1].start != 1.6 + 0.25 * 5
-    corner = viewport.mapTo(win, QPoint(0, 0))
-    size = viewport.size()
-    screen = QApplication.primaryScreen()  # offscreen: what has been painted so far
-    painted = screen.grabWindow(win.winId(), corner.x(), corner.y(), size.width(), size.height())
-    fresh = viewport.grab()  # everything painted again
+    painted, fresh = painted_and_fresh(win)
     QTest.mouseRelease(viewport, LEFT, NO, at + QPoint(20, 0))
     assert painted.size() == fresh.size()
-    assert _pixels(painted.toImage()) == _pixels(fresh.toImage())
+    assert _pixels(painted) == _pixels(fresh)
 
 
 def test_a_selected_clip_dragged_on_a_sparse_lane_leaves_no_trail(window):
@@ -124,20 +119,11 @@ def test_a_selected_clip_dragged_on_a_sparse_lane_leaves_no_trail(window):
     for step in range(1, 6):
         QTest.mouseMove(viewport, at + QPoint(-7 * step, 0))
         QApplication.processEvents()
-    corner = viewport.mapTo(win, QPoint(0, 0))
-    size = viewport.size()
-    screen = QApplication.primaryScreen()  # offscreen: what has been painted so far
-    painted = screen.grabWindow(win.winId(), corner.x(), corner.y(), size.width(), size.height())
-    fresh = viewport.grab()  # everything painted again
+    painted, fresh = painted_and_fresh(win)
     rect = win.view.mapFromScene(win.view.clip_scene_rect(win.ids["c1"])).boundingRect()
     QTest.mouseRelease(viewport, LEFT, NO, at + QPoint(-35, 0))
     assert win.doc.project.find_clip(win.ids["c1"])[1].start == pytest.approx(0.5 - 35 / 200)
-    before, after = (_pixel_array(p.toImage()) for p in (painted, fresh))
+    before, after = (pixel_array(p) for p in (painted, fresh))
     differs = (before != after).any(axis=2)
     differs[rect.top() - 1 : rect.bottom() + 2, rect.left() - 1 : rect.right() + 2] = False
     assert differs.sum() == 0
-
-
-def _pixel_array(image: QImage) -> np.ndarray:
-    rgb = image.convertToFormat(QImage.Format.Format_RGB32)
-    return np.frombuffer(rgb.constBits(), np.uint8).reshape(rgb.height(), rgb.width(), 4).copy()

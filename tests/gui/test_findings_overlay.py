@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QImage
 
-from tests.gui.helpers import choose, click, clip_point
+from tests.gui.helpers import choose, click, clip_point, painted_and_fresh, pixel_array
 from timeline import edits, generator
 
 
@@ -178,14 +177,9 @@ def test_a_drag_over_the_shading_repaints_what_a_fresh_paint_draws(stiff_window)
         QApplication.processEvents()
     line = win.view.snap_line
     assert line.line.isVisible() and 0.2 < line.at < 0.7  # its strip crosses the shading
-    corner = viewport.mapTo(win, QPoint(0, 0))
-    screen = QApplication.primaryScreen()  # offscreen: what has been painted so far
-    painted = screen.grabWindow(
-        win.winId(), corner.x(), corner.y(), viewport.width(), viewport.height()
-    )
-    fresh = viewport.grab()  # everything painted again
+    painted, fresh = painted_and_fresh(win)
     QTest.mouseRelease(viewport, left, none, at + QPoint(15, 0))
-    pixels = [_pixels(p.toImage()) for p in (painted, fresh)]
+    pixels = [pixel_array(p) for p in (painted, fresh)]
     assert pixels[0].shape == pixels[1].shape
     # the snap line and the edit cursor, lines at half pixels, are rasterized a column or a few
     # levels apart when only their strip is painted (so before these changes too): left out
@@ -194,8 +188,3 @@ def test_a_drag_over_the_shading_repaints_what_a_fresh_paint_draws(stiff_window)
         at_x = win.view.mapFromScene(x, 0).x()
         pixels[0][:, at_x - 1 : at_x + 2] = pixels[1][:, at_x - 1 : at_x + 2]
     assert (pixels[0] != pixels[1]).sum() == 0
-
-
-def _pixels(image: QImage) -> np.ndarray:
-    rgb = image.convertToFormat(QImage.Format.Format_RGB32)
-    return np.frombuffer(rgb.constBits(), np.uint8).reshape(rgb.height(), rgb.width(), 4).copy()

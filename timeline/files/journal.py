@@ -184,7 +184,7 @@ class Journal:
     def _open_first(self) -> None:
         assert self._state is not None
         base, meta = self._state, self._meta
-        based = not self.writing and self._base is base and snapshot_path(self.folder, 0).exists()
+        based = self._base is base and snapshot_path(self.folder, 0).exists()  # write_base's
         self._write_meta()
         self._open_generation(0)
         if based:
